@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""Pair benchmark: tbags gran/hertz/rolling against stock pair granular (hertz/material, mindlin,
+coeff_restitution, rolling sds) on the same dense polydisperse MODEL.md sand packing, in one
+invocation, serial and on 2 ranks. Prints ns per contact per step (pair time) and the ratio.
+
+usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2]
+"""
+import argparse
+import os
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests" / "decks"))
+import lmprun  # noqa: E402
+import packing  # noqa: E402
+
+OURS = ["pair_style gran/hertz/rolling epsd",
+        "pair_coeff * * material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2"]
+# stock: same normal/tangential physics; SDS rolling with a representative stiffness
+STOCK = ["pair_style granular",
+         "pair_coeff * * hertz/material 1.8e9 0.2 0.1 tangential mindlin NULL 0.97333 0.31 "
+         "rolling sds 100.0 0.0 0.05 damping coeff_restitution"]
+
+
+def run_one(lines, data, rep, steps, ranks, wd):
+    deck = (ROOT / "bench" / "in.bench_pair").read_text().replace("PAIR_LINES", "\n".join(lines))
+    res = lmprun.run(deck, wd, np_ranks=ranks, variables={"data": data, "rep": rep, "nsteps": steps},
+                     timeout=7200).check()
+    out = res.output
+    pair = float(re.search(r"^Pair\s*\|\s*\S+\s*\|\s*(\S+)", out, re.M).group(1))
+    loop = float(re.search(r"Loop time of (\S+)", out).group(1))
+    contacts = float(re.search(r"^CONTACTS (\S+)", out, re.M).group(1))
+    atoms = int(re.search(r"for \d+ steps with (\d+) atoms", out).group(1))
+    return dict(pair=pair, loop=loop, contacts=contacts, atoms=atoms,
+                ns=pair / steps / contacts * 1e9 * ranks)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--atoms-per-cell", type=int, default=4000)
+    ap.add_argument("--rep", type=int, default=2, help="replicate the packing rep^3 times (2: 32,000 atoms)")
+    ap.add_argument("--steps", type=int, default=1000)
+    ap.add_argument("--ranks", default="1,2")
+    ap.add_argument("--phi", type=float, default=0.66)
+    args = ap.parse_args()
+    wd = ROOT / "runs" / "bench"
+    wd.mkdir(parents=True, exist_ok=True)
+    data = wd / ("packing-%d-%.2f.data" % (args.atoms_per_cell, args.phi))
+    if not data.exists():
+        print("bench: making the packing (%d atoms, once) ..." % args.atoms_per_cell, flush=True)
+        L0 = 0.05 * (args.atoms_per_cell / 400) ** (1 / 3)
+        made = packing.make(wd / "packing", n=args.atoms_per_cell, phi=args.phi, L0=L0,
+                            ncompress=20000, np_ranks=2)
+        made.rename(data)
+    print("%-6s %-22s %8s %10s %12s %14s" % ("ranks", "style", "atoms", "contacts", "pair time s", "ns/contact/step"))
+    for ranks in [int(r) for r in args.ranks.split(",")]:
+        r = {}
+        for name, lines in (("tbags gran/hertz/rolling", OURS), ("stock granular", STOCK)):
+            r[name] = run_one(lines, data, args.rep, args.steps, ranks, wd / name.split()[0])
+            x = r[name]
+            print("%-6d %-22s %8d %10.0f %12.3f %14.1f" % (ranks, name, x["atoms"], x["contacts"], x["pair"], x["ns"]), flush=True)
+        ratio = r["stock granular"]["ns"] / r["tbags gran/hertz/rolling"]["ns"]
+        print("%-6d speed-up of tbags over stock (pair time per contact-step): %.2fx" % (ranks, ratio))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,585 @@
+/* ----------------------------------------------------------------------
+   T-BAGS DEM toolkit (tbags plugin for LAMMPS)
+   pair_style gran/hertz/rolling: Hertz-Mindlin contact with restitution damping, a friction
+   matrix and rolling resistance. The physics is in law/contact_law.h; this file gathers
+   neighbours, keeps the contact history and scatters forces.
+------------------------------------------------------------------------- */
+
+#include "pair_gran_hertz_rolling.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix.h"
+#include "fix_dummy.h"
+#include "fix_neigh_history.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+namespace law = tbags::contact;
+
+static const char *STYLE = "Pair style gran/hertz/rolling";
+
+PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
+    Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3), ntypes1(0),
+    freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
+    maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr)
+{
+  single_enable = 1;
+  no_virial_fdotr_compute = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+  finitecutflag = 1;
+  restartinfo = 1;
+  writedata = 1;
+  // svector: fs(3) |fs| fr(3) |fr| 0 dx dy dz  (as pair granular), then overlap and F_n
+  nondefault_history_transfer = 1;    // rolling history keeps its sign (transfer_history)
+  single_extra = 14;
+  svector = new double[single_extra];
+  // placeholder so FixNeighHistory ends up in input-script order (as pair granular does)
+  fix_dummy = dynamic_cast<FixDummy *>(
+      modify->add_fix("NEIGH_HISTORY_GHR_DUMMY all DUMMY"));
+}
+
+PairGranHertzRolling::~PairGranHertzRolling()
+{
+  delete[] svector;
+  if (!fix_history && modify->get_fix_by_id("NEIGH_HISTORY_GHR_DUMMY"))
+    modify->delete_fix("NEIGH_HISTORY_GHR_DUMMY");
+  else if (fix_history && modify->get_fix_by_id("NEIGH_HISTORY_GHR"))
+    modify->delete_fix("NEIGH_HISTORY_GHR");
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(Emod);
+    memory->destroy(poiss);
+    memory->destroy(matflag);
+    memory->destroy(maxrad);
+    memory->destroy(mu);
+    memory->destroy(mur);
+    memory->destroy(cor);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranHertzRolling::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  ntypes1 = n + 1;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  memory->create(Emod, n + 1, "pair:Emod");
+  memory->create(poiss, n + 1, "pair:poiss");
+  memory->create(matflag, n + 1, "pair:matflag");
+  memory->create(maxrad, n + 1, "pair:maxrad");
+  memory->create(mu, n + 1, n + 1, "pair:mu");
+  memory->create(mur, n + 1, n + 1, "pair:mur");
+  memory->create(cor, n + 1, n + 1, "pair:cor");
+  for (int i = 0; i <= n; i++) {
+    Emod[i] = poiss[i] = maxrad[i] = 0.0;
+    matflag[i] = 0;
+    for (int j = 0; j <= n; j++) {
+      // diagonal marked set so that init_style(), not Pair::init()'s generic message,
+      // reports a type without coefficients (matflag tracks what pair_coeff gave)
+      setflag[i][j] = (i == j) ? 1 : 0;
+      mu[i][j] = mur[i][j] = cor[i][j] = -1.0;
+    }
+  }
+  law.assign((size_t) (n + 1) * (n + 1), law::Params());
+}
+
+/* ----------------------------------------------------------------------
+   pair_style gran/hertz/rolling epsd|cdt|none [limit_damping]
+------------------------------------------------------------------------- */
+
+void PairGranHertzRolling::settings(int narg, char **arg)
+{
+  if (narg < 1)
+    error->all(FLERR, "{}: missing rolling model; write 'pair_style gran/hertz/rolling epsd' "
+               "(or cdt, none)", STYLE);
+  if (strcmp(arg[0], "epsd") == 0) rolling = law::ROLLING_EPSD;
+  else if (strcmp(arg[0], "cdt") == 0) rolling = law::ROLLING_CDT;
+  else if (strcmp(arg[0], "none") == 0) rolling = law::ROLLING_NONE;
+  else
+    error->all(FLERR, "{}: unknown rolling model '{}'; use epsd, cdt or none", STYLE, arg[0]);
+  limit_damping = false;
+  for (int iarg = 1; iarg < narg; iarg++) {
+    if (strcmp(arg[iarg], "limit_damping") == 0) limit_damping = true;
+    else
+      error->all(FLERR, "{}: unknown keyword '{}'; the only option is limit_damping", STYLE,
+                 arg[iarg]);
+  }
+  size_history = law::history_size(rolling);
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J [material E nu] [friction mu] [rolling mu_r] [restitution e]
+   material only with I == J; for I == J friction and restitution (and rolling unless the
+   model is none) are required; for I != J, values not given mix from the diagonal.
+------------------------------------------------------------------------- */
+
+void PairGranHertzRolling::coeff(int narg, char **arg)
+{
+  if (narg < 3)
+    error->all(FLERR, "{}: pair_coeff needs I J and coefficients, e.g. 'pair_coeff 1 1 material "
+               "1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2'", STYLE);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  double E = -1.0, nu = 0.0, f = -1.0, fr = -1.0, e = -1.0;
+  bool has_mat = false;
+  for (int iarg = 2; iarg < narg;) {
+    const std::string kw = arg[iarg];
+    auto need = [&](int n) {
+      if (iarg + n >= narg)
+        error->all(FLERR, "{}: pair_coeff keyword '{}' needs {} value(s)", STYLE, kw, n);
+    };
+    if (kw == "material") {
+      need(2);
+      E = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      nu = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (E <= 0.0)
+        error->all(FLERR, "{}: Young's modulus must be > 0 (got {}); give it in Pa with units si",
+                   STYLE, E);
+      if (nu <= -1.0 || nu >= 0.5)
+        error->all(FLERR, "{}: Poisson's ratio must be in (-1, 0.5) (got {})", STYLE, nu);
+      has_mat = true;
+      iarg += 3;
+    } else if (kw == "friction") {
+      need(1);
+      f = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (f < 0.0) error->all(FLERR, "{}: friction must be >= 0 (got {})", STYLE, f);
+      iarg += 2;
+    } else if (kw == "rolling") {
+      need(1);
+      fr = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (fr < 0.0) error->all(FLERR, "{}: rolling friction mu_r must be >= 0 (got {})", STYLE, fr);
+      iarg += 2;
+    } else if (kw == "restitution") {
+      need(1);
+      e = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (e <= 0.0 || e > 1.0)
+        error->all(FLERR, "{}: coefficient of restitution must be in (0, 1] (got {})", STYLE, e);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "{}: unknown pair_coeff keyword '{}'; use material, friction, rolling, "
+                 "restitution", STYLE, kw);
+    }
+  }
+
+  if (has_mat && (MAX(ilo, jlo) > MIN(ihi, jhi)))
+    error->all(FLERR, "{}: 'material' sets a type's E and nu: give it in 'pair_coeff I I' (or * *), "
+               "not for the pair {} {}", STYLE, arg[0], arg[1]);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++) {
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      if (i == j) {
+        if (!has_mat && !matflag[i])
+          error->all(FLERR, "{}: pair_coeff {} {} needs 'material E nu' for type {}", STYLE, i, i, i);
+        if (f < 0.0 || e < 0.0 || (rolling != law::ROLLING_NONE && fr < 0.0))
+          error->all(FLERR, "{}: pair_coeff {} {} needs friction, restitution{}", STYLE, i, i,
+                     rolling != law::ROLLING_NONE ? " and rolling" : "");
+        if (has_mat) {
+          Emod[i] = E;
+          poiss[i] = nu;
+          matflag[i] = 1;
+        }
+      }
+      if (f >= 0.0) mu[i][j] = f;
+      if (fr >= 0.0) mur[i][j] = fr;
+      if (e >= 0.0) cor[i][j] = e;
+      if (rolling == law::ROLLING_NONE && fr < 0.0) mur[i][j] = 0.0;
+      if (i != j) mixed_flag = 0;    // write_data: off-diagonal values need 'pair ij'
+      setflag[i][j] = 1;
+      count++;
+    }
+  }
+  if (count == 0) error->all(FLERR, "{}: pair_coeff {} {} sets no type pair", STYLE, arg[0], arg[1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranHertzRolling::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "{} requires per-atom radius, rmass, omega and torque: use atom_style "
+               "sphere or bpm/sphere", STYLE);
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "{} requires ghost atoms to store velocity: add 'comm_modify vel yes'", STYLE);
+  for (int i = 1; i <= atom->ntypes; i++)
+    if (!matflag[i])
+      error->all(FLERR, "{}: type {} has no material: write 'pair_coeff {} {} material E nu "
+                 "friction mu{} restitution e'", STYLE, i, i, i, rolling ? " rolling mu_r" : "");
+
+  neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_HISTORY);
+
+  if (fix_history == nullptr) {
+    fix_history = dynamic_cast<FixNeighHistory *>(
+        modify->replace_fix("NEIGH_HISTORY_GHR_DUMMY",
+                            "NEIGH_HISTORY_GHR all NEIGH_HISTORY " + std::to_string(size_history),
+                            1));
+    fix_history->pair = this;
+  } else {
+    fix_history = dynamic_cast<FixNeighHistory *>(modify->get_fix_by_id("NEIGH_HISTORY_GHR"));
+    if (!fix_history) error->all(FLERR, "{}: could not find its neighbor history fix", STYLE);
+  }
+
+  auto fixlist = modify->get_fix_by_style("^freeze");
+  if (fixlist.size() > 1) error->all(FLERR, "{}: only one fix freeze is allowed", STYLE);
+  freeze_group_bit = fixlist.empty() ? 0 : fixlist.front()->groupbit;
+  for (const auto &ifix : modify->get_fix_list())
+    if (ifix->rigid_flag)
+      error->all(FLERR, "{} does not support rigid bodies (fix {}); use pair granular", STYLE,
+                 ifix->style);
+
+  // per-type largest radius sets the cutoffs (atoms inserted later must not be larger)
+  std::vector<double> onerad(atom->ntypes + 1, 0.0);
+  for (int i = 0; i < atom->nlocal; i++)
+    onerad[atom->type[i]] = MAX(onerad[atom->type[i]], atom->radius[i]);
+  MPI_Allreduce(&onerad[1], &maxrad[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairGranHertzRolling::init_one(int i, int j)
+{
+  auto pick = [&](double **v, const char *what) {
+    double x = v[MIN(i, j)][MAX(i, j)];
+    if (x < 0.0) x = sqrt(v[i][i] * v[j][j]);    // geometric mixing from the diagonal
+    if (!(x >= 0.0)) error->all(FLERR, "{}: no {} for types {} {}", STYLE, what, i, j);
+    return x;
+  };
+  if (setflag[i][i] == 0 || setflag[j][j] == 0) {
+    const int t = setflag[i][i] ? j : i;
+    error->all(FLERR, "{}: missing 'pair_coeff {} {} material E nu friction mu ...'", STYLE, t, t);
+  }
+  const double Es = law::mix_E(Emod[i], poiss[i], Emod[j], poiss[j]);
+  const double Gs = law::mix_G(Emod[i], poiss[i], Emod[j], poiss[j]);
+  const law::Params p = law::make_params(Es, Gs, pick(cor, "restitution"), pick(mu, "friction"),
+                                         pick(mur, "rolling friction"), rolling, limit_damping);
+  law[i * ntypes1 + j] = law[j * ntypes1 + i] = p;
+
+  double cut = maxrad[i] + maxrad[j];
+  if (cut <= 0.0) {
+    for (int k = 1; k <= atom->ntypes; k++) cut = MAX(cut, 2.0 * maxrad[k]);
+  }
+  return cut;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranHertzRolling::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  const bool update_hist = update->setupflag == 0;
+
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int *type = atom->type;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  const double *special_lj = force->special_lj;
+  const double dt = update->dt;
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  int **firsttouch = fix_history->firstflag;
+  double **firsthistory = fix_history->firstvalue;
+
+  law::Contact c;
+  c.wall = false;
+  c.dt = dt;
+  law::Result o;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int itype = type[i];
+    const double xi0 = x[i][0], xi1 = x[i][1], xi2 = x[i][2];
+    const double radi = radius[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    int *touch = firsttouch[i];
+    double *allhistory = firsthistory[i];
+    const law::Params *prow = &law[itype * ntypes1];
+
+    for (int jj = 0; jj < jnum; jj++) {
+      int j = jlist[jj];
+      const double factor_lj = special_lj[sbmask(j)];
+      j &= NEIGHMASK;
+      if (factor_lj == 0.0) continue;
+
+      double dx[3] = {xi0 - x[j][0], xi1 - x[j][1], xi2 - x[j][2]};
+      const double rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+      const double radsum = radi + radius[j];
+      double *hist = &allhistory[size_history * jj];
+      if (!law::touching(rsq, radsum)) {
+        if (touch[jj]) {
+          touch[jj] = 0;
+          for (int k = 0; k < size_history; k++) hist[k] = 0.0;
+        }
+        continue;
+      }
+      touch[jj] = 1;
+
+      double meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
+      if (mask[i] & freeze_group_bit) meff = rmass[j];
+      if (mask[j] & freeze_group_bit) meff = rmass[i];
+
+      c.dx = dx;
+      c.rsq = rsq;
+      c.radsum = radsum;
+      c.radi = radi;
+      c.radj = radius[j];
+      c.reff = radi * radius[j] / radsum;
+      c.meff = meff;
+      c.vi = v[i];
+      c.vj = v[j];
+      c.wi = omega[i];
+      c.wj = omega[j];
+      law::compute(prow[type[j]], c, hist, update_hist, o);
+
+      if (factor_lj != 1.0) {
+        for (int k = 0; k < 3; k++) {
+          o.f[k] *= factor_lj;
+          o.ti[k] *= factor_lj;
+          o.tj[k] *= factor_lj;
+        }
+      }
+      f[i][0] += o.f[0];
+      f[i][1] += o.f[1];
+      f[i][2] += o.f[2];
+      torque[i][0] += o.ti[0];
+      torque[i][1] += o.ti[1];
+      torque[i][2] += o.ti[2];
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= o.f[0];
+        f[j][1] -= o.f[1];
+        f[j][2] -= o.f[2];
+        torque[j][0] += o.tj[0];
+        torque[j][1] += o.tj[1];
+        torque[j][2] += o.tj[2];
+      }
+      if (evflag)
+        ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, o.f[0], o.f[1], o.f[2], dx[0], dx[1],
+                     dx[2]);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   single(): force along the line of centres / r (as pair granular) and svector:
+   fs(3) |fs| fr(3) |fr| 0 dx dy dz overlap F_n
+------------------------------------------------------------------------- */
+
+double PairGranHertzRolling::single(int i, int j, int itype, int jtype, double rsq,
+                                    double /*factor_coul*/, double factor_lj, double &fforce)
+{
+  fforce = 0.0;
+  for (int m = 0; m < single_extra; m++) svector[m] = 0.0;
+  if (factor_lj == 0.0) return 0.0;
+  const double radsum = atom->radius[i] + atom->radius[j];
+  if (!law::touching(rsq, radsum)) return 0.0;
+  if (!fix_history || !fix_history->firstvalue)
+    error->one(FLERR, "{}: single() needs the contact history; run at least 0 steps first", STYLE);
+
+  // find j in i's neighbor list to read the stored history (copied: single() changes nothing)
+  double hist[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  const int jnum = list->numneigh[i];
+  const int *jlist = list->firstneigh[i];
+  bool found = false;
+  for (int jj = 0; jj < jnum; jj++) {
+    neighprev++;
+    if (neighprev >= jnum) neighprev = 0;
+    if ((jlist[neighprev] & NEIGHMASK) == j) {
+      found = true;
+      break;
+    }
+  }
+  if (found) {
+    const double *h = &fix_history->firstvalue[i][size_history * neighprev];
+    for (int k = 0; k < size_history; k++) hist[k] = h[k];
+  }
+
+  double **x = atom->x;
+  double dx[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  double meff = atom->rmass[i] * atom->rmass[j] / (atom->rmass[i] + atom->rmass[j]);
+  if (atom->mask[i] & freeze_group_bit) meff = atom->rmass[j];
+  if (atom->mask[j] & freeze_group_bit) meff = atom->rmass[i];
+  law::Contact c;
+  c.dx = dx;
+  c.rsq = rsq;
+  c.radsum = radsum;
+  c.radi = atom->radius[i];
+  c.radj = atom->radius[j];
+  c.reff = c.radi * c.radj / radsum;
+  c.meff = meff;
+  c.vi = atom->v[i];
+  c.vj = atom->v[j];
+  c.wi = atom->omega[i];
+  c.wj = atom->omega[j];
+  c.wall = false;
+  c.dt = update->dt;
+  law::Result o;
+  law::compute(params(itype, jtype), c, hist, false, o);
+
+  fforce = factor_lj * o.fn / o.r;
+  for (int k = 0; k < 3; k++) {
+    svector[k] = factor_lj * o.fs[k];
+    svector[4 + k] = factor_lj * o.fr[k];
+    svector[9 + k] = dx[k];
+  }
+  svector[3] = factor_lj * tbags::vec::len(o.fs);
+  svector[7] = factor_lj * tbags::vec::len(o.fr);
+  svector[12] = o.delta;
+  svector[13] = factor_lj * o.fn;
+  return 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   history as seen from j (newton off, FixNeighHistory): the tangential displacement
+   integrates v_t, which changes sign with i <-> j; the rolling displacement integrates
+   R* (w_i - w_j) x n, where both factors change sign, so it is kept.
+------------------------------------------------------------------------- */
+
+void PairGranHertzRolling::transfer_history(double *source, double *target, int, int)
+{
+  for (int k = 0; k < 3; k++) target[k] = -source[k];
+  for (int k = 3; k < size_history; k++) target[k] = source[k];
+}
+
+double PairGranHertzRolling::atom2cut(int i)
+{
+  return 2.0 * atom->radius[i];
+}
+
+double PairGranHertzRolling::radii2cut(double r1, double r2)
+{
+  return r1 + r2;
+}
+
+void PairGranHertzRolling::reset_dt() {}
+
+void *PairGranHertzRolling::extract(const char *str, int &dim)
+{
+  dim = 1;
+  if (strcmp(str, "E") == 0) return (void *) Emod;
+  if (strcmp(str, "nu") == 0) return (void *) poiss;
+  dim = 2;
+  if (strcmp(str, "mu") == 0) return (void *) mu;
+  if (strcmp(str, "mu_r") == 0) return (void *) mur;
+  if (strcmp(str, "restitution") == 0) return (void *) cor;
+  return nullptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranHertzRolling::write_restart_settings(FILE *fp)
+{
+  int ld = limit_damping ? 1 : 0;
+  fwrite(&rolling, sizeof(int), 1, fp);
+  fwrite(&ld, sizeof(int), 1, fp);
+}
+
+void PairGranHertzRolling::read_restart_settings(FILE *fp)
+{
+  int ld = 0;
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &rolling, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &ld, sizeof(int), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&rolling, 1, MPI_INT, 0, world);
+  MPI_Bcast(&ld, 1, MPI_INT, 0, world);
+  limit_damping = ld != 0;
+  size_history = law::history_size(rolling);
+}
+
+void PairGranHertzRolling::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++) {
+    fwrite(&matflag[i], sizeof(int), 1, fp);
+    fwrite(&Emod[i], sizeof(double), 1, fp);
+    fwrite(&poiss[i], sizeof(double), 1, fp);
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      fwrite(&mu[i][j], sizeof(double), 1, fp);
+      fwrite(&mur[i][j], sizeof(double), 1, fp);
+      fwrite(&cor[i][j], sizeof(double), 1, fp);
+    }
+  }
+}
+
+void PairGranHertzRolling::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++) {
+    if (me == 0) {
+      utils::sfread(FLERR, &matflag[i], sizeof(int), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &Emod[i], sizeof(double), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &poiss[i], sizeof(double), 1, fp, nullptr, error);
+    }
+    MPI_Bcast(&matflag[i], 1, MPI_INT, 0, world);
+    MPI_Bcast(&Emod[i], 1, MPI_DOUBLE, 0, world);
+    MPI_Bcast(&poiss[i], 1, MPI_DOUBLE, 0, world);
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) {
+        utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &mu[i][j], sizeof(double), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &mur[i][j], sizeof(double), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &cor[i][j], sizeof(double), 1, fp, nullptr, error);
+      }
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      MPI_Bcast(&mu[i][j], 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&mur[i][j], 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&cor[i][j], 1, MPI_DOUBLE, 0, world);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   write_data: 'Pair Coeffs' (type I) and 'PairIJ Coeffs' (I J), read back by pair_coeff
+------------------------------------------------------------------------- */
+
+void PairGranHertzRolling::write_data(FILE *fp)
+{
+  for (int i = 1; i <= atom->ntypes; i++)
+    utils::print(fp, "{} material {:.17g} {:.17g} friction {:.17g} rolling {:.17g} restitution {:.17g}\n",
+                 i, Emod[i], poiss[i], mu[i][i], mur[i][i], cor[i][i]);
+}
+
+void PairGranHertzRolling::write_data_all(FILE *fp)
+{
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      const law::Params &p = params(i, j);
+      if (i == j)
+        utils::print(fp, "{} {} material {:.17g} {:.17g}", i, j, Emod[i], poiss[i]);
+      else
+        utils::print(fp, "{} {}", i, j);
+      utils::print(fp, " friction {:.17g} rolling {:.17g} restitution {:.17g}\n",
+                   mu[i][j] >= 0.0 ? mu[i][j] : p.mu, mur[i][j] >= 0.0 ? mur[i][j] : p.mur,
+                   cor[i][j] >= 0.0 ? cor[i][j] : sqrt(cor[i][i] * cor[j][j]));
+    }
+}

@@ -1,0 +1,71 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   T-BAGS DEM toolkit (tbags plugin for LAMMPS)
+   pair_style gran/hertz/rolling: thin adapter around law/contact_law.h
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PAIR_GRAN_HERTZ_ROLLING_H
+#define LMP_PAIR_GRAN_HERTZ_ROLLING_H
+
+#include "pair.h"
+#include "law/contact_law.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairGranHertzRolling : public Pair {
+ public:
+  PairGranHertzRolling(class LAMMPS *);
+  ~PairGranHertzRolling() override;
+
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  void write_data(FILE *) override;
+  void write_data_all(FILE *) override;
+  double single(int, int, int, int, double, double, double, double &) override;
+  void transfer_history(double *, double *, int, int) override;
+  double atom2cut(int) override;
+  double radii2cut(double, double) override;
+  void *extract(const char *, int &) override;
+  void reset_dt() override;
+
+  // per-type material and per-pair coefficients (public for the plate fix)
+  const tbags::contact::Params &params(int i, int j) const { return law[i * (ntypes1) + j]; }
+  double material_E(int i) const { return Emod[i]; }
+  double material_nu(int i) const { return poiss[i]; }
+  int rolling_model() const { return rolling; }
+  bool damping_limited() const { return limit_damping; }
+
+ protected:
+  int rolling;            // tbags::contact::Rolling
+  bool limit_damping;
+  int size_history;
+  int ntypes1;            // ntypes + 1
+  int freeze_group_bit;
+  int neighprev;
+
+  // per type (1..ntypes)
+  double *Emod, *poiss;
+  int *matflag;
+  double *maxrad;
+  // per type pair (explicit values; -1 = mix from the diagonal)
+  double **mu, **mur, **cor;
+  std::vector<tbags::contact::Params> law;    // flat [i*(ntypes+1)+j]
+
+  class FixDummy *fix_dummy;
+  class FixNeighHistory *fix_history;
+
+  void allocate();
+  void contact_setup(int i, int j, double *hist_in, tbags::contact::Contact &c, double *vzero);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,32 @@
+/* T-BAGS DEM toolkit: registration of the tbags plugin's styles (registration only). */
+
+#include "lammpsplugin.h"
+#include "version.h"
+
+#include "pair_gran_hertz_rolling.h"
+
+#ifndef TBAGS_VERSION
+#define TBAGS_VERSION "0.1.0"
+#endif
+
+using namespace LAMMPS_NS;
+
+static Pair *pair_gran_hertz_rolling_creator(LAMMPS *lmp)
+{
+  return new PairGranHertzRolling(lmp);
+}
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  auto register_plugin = (lammpsplugin_regfunc) regfunc;
+  lammpsplugin_t plugin;
+
+  plugin.version = LAMMPS_VERSION;
+  plugin.style = "pair";
+  plugin.name = "gran/hertz/rolling";
+  plugin.info = "tbags " TBAGS_VERSION ": Hertz-Mindlin + restitution damping + rolling resistance";
+  plugin.author = "T-BAGS DEM toolkit developers";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_gran_hertz_rolling_creator;
+  plugin.handle = handle;
+  (*register_plugin)(&plugin, lmp);
+}

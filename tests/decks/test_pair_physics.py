@@ -1,0 +1,128 @@
+"""pair gran/hertz/rolling against exact answers: restitution in head-on collisions,
+Coulomb sliding, rolling deceleration (CDT) and arrest (EPSD) of a sphere on a flat surface."""
+import math
+
+import pytest
+
+import lmprun
+
+COLLISION = """
+units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+comm_modify vel yes
+region box block -0.02 0.02 -0.02 0.02 -0.02 0.02
+create_box 2 box
+create_atoms 1 single 0 0 -0.00251
+create_atoms 2 single 0 0 ${zj}
+set type 1 diameter 0.005
+set type 2 diameter ${dj}
+set type * density 2650
+set atom 1 vz 0.25
+set atom 2 vz -0.25
+pair_style gran/hertz/rolling none
+pair_coeff * * material 1.8e9 0.1 friction 0.31 restitution ${e}
+timestep 1e-8
+fix 1 all nve/sphere
+variable vrel equal vz[2]-vz[1]
+run 40000
+print "VREL ${vrel}"
+"""
+
+
+@pytest.mark.parametrize("e", [0.2, 0.5, 0.9])
+@pytest.mark.parametrize("dj", [0.005, 0.0025])
+def test_head_on_restitution(tmp_path, e, dj):
+    zj = dj / 2 + 1e-5
+    res = lmprun.run(COLLISION, tmp_path, variables={"e": e, "dj": dj, "zj": zj}).check()
+    vrel = [float(l.split()[1]) for l in res.output.splitlines() if l.startswith("VREL")][0]
+    e_meas = vrel / 0.5
+    print("e=%.2f dj=%g measured %.6f" % (e, dj, e_meas))
+    assert abs(e_meas - e) < 0.005 * e
+
+
+# a small sphere on a huge fixed sphere (R = 1e4 m: flat to 1e-6 over the run) under gravity
+ON_PLANE = """
+units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+comm_modify vel yes
+region box block -1 1 -1 1 -10001 0.1
+create_box 2 box
+create_atoms 1 single 0 0 -10000
+create_atoms 2 single 0 0 0.0025
+set type 1 diameter 20000
+set type 2 diameter 0.005
+set type * density 2650
+group ball type 2
+pair_style gran/hertz/rolling ${model}
+pair_coeff * * material 1.8e9 0.1 friction ${mu} rolling ${mur} restitution 0.2
+neigh_modify exclude type 1 1
+neighbor 0.001 nsq
+timestep 1e-6
+fix 1 ball nve/sphere
+fix 2 ball gravity 9.81 vector 0 0 -1
+run 40000
+set atom 2 vx ${v0}
+variable t equal step*dt
+variable vx equal vx[2]
+fix out all print 500 "${t} ${vx}" file vx.txt screen no
+run ${nsteps}
+"""
+
+
+def read_vx(path):
+    import numpy as np
+    return np.loadtxt(path)
+
+
+def test_sliding_sphere_obeys_coulomb(tmp_path):
+    """Slip phase: dv/dt = -mu g; rolling without slip then at 5/7 v0 (solid sphere)."""
+    mu, v0, g = 0.31, 0.5, 9.81
+    lmprun.run(ON_PLANE, tmp_path, variables={"model": "none", "mu": mu, "mur": 0.0, "v0": v0,
+                                              "nsteps": 80000}).check()
+    d = read_vx(tmp_path / "vx.txt")
+    t, vx = d[:, 0] - d[0, 0], d[:, 1]
+    t_slip = 2 * v0 / (7 * mu * g)
+    slip = (t > 0.1 * t_slip) & (t < 0.9 * t_slip)
+    import numpy as np
+    decel = -np.polyfit(t[slip], vx[slip], 1)[0]
+    print("deceleration %.5f (mu g = %.5f), final %.6f (5/7 v0 = %.6f)" % (decel, mu * g, vx[-1], 5 / 7 * v0))
+    assert abs(decel - mu * g) < 0.01 * mu * g
+    assert abs(vx[-1] - 5 / 7 * v0) < 0.005 * v0
+
+
+def test_rolling_cdt_deceleration(tmp_path):
+    """CDT: a rolling solid sphere decelerates at a = 5/7 mu_r g R*/R."""
+    import numpy as np
+    mu, mur, v0, g = 0.9, 0.05, 0.5, 9.81
+    lmprun.run(ON_PLANE, tmp_path, variables={"model": "cdt", "mu": mu, "mur": mur, "v0": v0,
+                                              "nsteps": 300000}).check()
+    d = read_vx(tmp_path / "vx.txt")
+    t, vx = d[:, 0] - d[0, 0], d[:, 1]
+    R, Rb = 0.0025, 1e4
+    a_th = 5 / 7 * mur * g * (R * Rb / (R + Rb)) / R
+    roll = (t > 0.02) & (vx > 0.3 * vx.max())
+    a = -np.polyfit(t[roll], vx[roll], 1)[0]
+    print("CDT deceleration %.5f, theory %.5f" % (a, a_th))
+    assert abs(a - a_th) < 0.02 * a_th
+
+
+def test_rolling_epsd_stops_sphere(tmp_path):
+    """EPSD: same deceleration while the spring slips, then the elastic spring holds the sphere."""
+    import numpy as np
+    mu, mur, v0, g = 0.9, 0.2, 0.5, 9.81
+    lmprun.run(ON_PLANE, tmp_path, variables={"model": "epsd", "mu": mu, "mur": mur, "v0": v0,
+                                              "nsteps": 500000}).check()
+    d = read_vx(tmp_path / "vx.txt")
+    t, vx = d[:, 0] - d[0, 0], d[:, 1]
+    a_th = 5 / 7 * mur * g
+    roll = (t > 0.02) & (vx > 0.3 * vx.max())
+    a = -np.polyfit(t[roll], vx[roll], 1)[0]
+    t_stop = 0.02 + vx[t >= 0.02][0] / a_th
+    late = t > t_stop + 0.02
+    print("EPSD deceleration %.5f (theory %.5f); |v| after stop <= %.2e" % (a, a_th, np.abs(vx[late]).max()))
+    assert abs(a - a_th) < 0.02 * a_th
+    assert late.sum() > 10 and np.abs(vx[late]).max() < 2e-3 * v0

@@ -1,0 +1,298 @@
+// Unit tests of law/contact_law.h against closed forms (no LAMMPS).
+#include "law/contact_law.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace tbags::contact;
+
+namespace {
+constexpr double REL = 1e-12;
+const double E_SAND = 1.8e9, NU = 0.1;
+
+void expect_rel(double got, double want, double rel = REL)
+{
+  EXPECT_NEAR(got, want, rel * std::fabs(want)) << "got " << got << " want " << want;
+}
+
+struct Pair2 {
+  double xi[3] = {0, 0, 0}, xj[3] = {0, 0, 0};
+  double vi[3] = {0, 0, 0}, vj[3] = {0, 0, 0}, wi[3] = {0, 0, 0}, wj[3] = {0, 0, 0};
+  double ri = 2.5e-3, rj = 2.5e-3, mi = 1e-4, mj = 1e-4;
+  double dx[3];
+  Contact c() {
+    Contact k;
+    for (int d = 0; d < 3; d++) dx[d] = xi[d] - xj[d];
+    k.dx = dx;
+    k.rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+    k.radsum = ri + rj;
+    k.reff = ri * rj / (ri + rj);
+    k.meff = mi * mj / (mi + mj);
+    k.radi = ri;
+    k.radj = rj;
+    k.vi = vi; k.vj = vj; k.wi = wi; k.wj = wj;
+    k.wall = false;
+    k.dt = 1e-6;
+    return k;
+  }
+};
+
+Params sand(double e = 0.2, double mu = 0.31, double mur = 0.05, int roll = ROLLING_EPSD)
+{
+  return make_params(mix_E(E_SAND, NU, E_SAND, NU), mix_G(E_SAND, NU, E_SAND, NU), e, mu, mur,
+                     roll, false);
+}
+}    // namespace
+
+TEST(Mixing, SameMaterial)
+{
+  expect_rel(mix_E(E_SAND, NU, E_SAND, NU), E_SAND / (2.0 * (1.0 - NU * NU)));
+  expect_rel(mix_G(E_SAND, NU, E_SAND, NU), E_SAND / (4.0 * (2.0 - NU) * (1.0 + NU)));
+}
+
+TEST(Mixing, TwoMaterialsHertzMindlin)
+{
+  // 1/E* = sum (1-v^2)/E ; 1/G* = sum (2-v)/G with G = E/(2(1+v))
+  const double E1 = 0.75e9, v1 = 0.1, E2 = 200e9, v2 = 0.3;
+  const double G1 = E1 / (2 * (1 + v1)), G2 = E2 / (2 * (1 + v2));
+  expect_rel(mix_E(E1, v1, E2, v2), 1.0 / ((1 - v1 * v1) / E1 + (1 - v2 * v2) / E2));
+  expect_rel(mix_G(E1, v1, E2, v2), 1.0 / ((2 - v1) / G1 + (2 - v2) / G2));
+}
+
+TEST(Normal, HertzForceOverlap)
+{
+  const Params p = sand(1.0);    // e = 1: no damping
+  for (double d : {1e-7, 1e-6, 1e-5, 5e-5}) {
+    for (double rj : {2.5e-3, 1.8e-3}) {
+      Pair2 s;
+      s.rj = rj;
+      s.xi[2] = s.ri + rj - d;
+      Contact c = s.c();
+      double hist[6] = {0};
+      Result o;
+      compute(p, c, hist, true, o);
+      const double Rs = s.ri * rj / (s.ri + rj);
+      const double Es = E_SAND / (2 * (1 - NU * NU));
+      const double want = 4.0 / 3.0 * Es * std::sqrt(Rs) * std::pow(d, 1.5);
+      expect_rel(o.delta, d, 1e-9);    // overlap from positions: round-off of x only
+      // force as a function of the overlap the law saw
+      expect_rel(o.fne, 4.0 / 3.0 * Es * std::sqrt(Rs) * std::pow(o.delta, 1.5));
+      expect_rel(o.f[2], o.fne);
+      expect_rel(o.fne, want, 1e-8);
+      EXPECT_DOUBLE_EQ(o.f[0], 0.0);
+    }
+  }
+}
+
+TEST(Normal, RestitutionDampingCoefficient)
+{
+  const double e = 0.5;
+  const Params p = sand(e);
+  Pair2 s;
+  const double d = 2e-5;
+  s.xi[2] = s.ri + s.rj - d;
+  s.vi[2] = -0.1;    // approaching
+  Contact c = s.c();
+  double hist[6] = {0};
+  Result o;
+  compute(p, c, hist, true, o);
+  const double Es = E_SAND / (2 * (1 - NU * NU));
+  const double Rs = s.ri * s.rj / (s.ri + s.rj);
+  const double a = std::sqrt(Rs * o.delta);
+  const double beta = -std::log(e) / std::sqrt(std::log(e) * std::log(e) + M_PI * M_PI);
+  const double eta = 2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(2.0 * Es * a * c.meff);
+  expect_rel(o.fn - o.fne, eta * 0.1);
+}
+
+// head-on collision integrated with velocity Verlet at 1/2000 of the contact time:
+// the measured rebound ratio equals the input e (the damping form is built for it)
+TEST(Normal, CollisionRestitution)
+{
+  for (double e : {0.2, 0.5, 0.9}) {
+    for (double rj : {2.5e-3, 1.25e-3}) {
+      const Params p = sand(e, 0.31, 0.0, ROLLING_NONE);
+      const double rho = 2650, ri = 2.5e-3;
+      const double mi = rho * 4.0 / 3.0 * M_PI * ri * ri * ri, mj = rho * 4.0 / 3.0 * M_PI * rj * rj * rj;
+      const double v0 = 0.5;
+      double zi = ri + rj, vi = -v0 * mj / (mi + mj), vj = v0 * mi / (mi + mj), zj = 0.0;
+      const double dt = 2e-9;
+      double fprev = 0.0;
+      bool was_in = false;
+      for (int step = 0; step < 2000000; step++) {
+        // half kick, drift, force, half kick
+        vi += 0.5 * dt * fprev / mi;
+        vj -= 0.5 * dt * fprev / mj;
+        zi += dt * vi;
+        zj += dt * vj;
+        double f = 0.0;
+        if (zi - zj < ri + rj) {
+          was_in = true;
+          Pair2 s;
+          s.ri = ri; s.rj = rj; s.mi = mi; s.mj = mj;
+          s.xi[2] = zi; s.xj[2] = zj; s.vi[2] = vi; s.vj[2] = vj;
+          Contact c = s.c();
+          c.dt = dt;
+          double hist[6] = {0};
+          Result o;
+          compute(p, c, hist, true, o);
+          f = o.f[2];
+        } else if (was_in) {
+          break;
+        }
+        vi += 0.5 * dt * f / mi;
+        vj -= 0.5 * dt * f / mj;
+        fprev = f;
+      }
+      const double e_meas = (vi - vj) / v0;
+      EXPECT_NEAR(e_meas, e, 0.005 * e) << "e=" << e << " rj=" << rj;
+    }
+  }
+}
+
+TEST(Tangential, MindlinStiffnessFirstStep)
+{
+  const Params p = sand(1.0, 0.5, 0.0, ROLLING_NONE);
+  Pair2 s;
+  const double d = 1e-5;
+  s.xi[2] = s.ri + s.rj - d;
+  s.vi[0] = 0.01;
+  Contact c = s.c();
+  double hist[6] = {0};
+  Result o;
+  compute(p, c, hist, true, o);
+  const double Gs = E_SAND / (4 * (2 - NU) * (1 + NU));
+  const double a = std::sqrt(c.reff * o.delta);
+  expect_rel(hist[0], 0.01 * c.dt);
+  expect_rel(o.fs[0], -8.0 * Gs * a * 0.01 * c.dt);
+  // torque on both: -(r - d/2) n x fs
+  expect_rel(o.ti[1], -(s.ri - 0.5 * o.delta) * o.fs[0]);
+  expect_rel(o.tj[1], -(s.rj - 0.5 * o.delta) * o.fs[0]);
+}
+
+TEST(Tangential, CoulombCapAndHistoryReset)
+{
+  const double mu = 0.31;
+  const Params p = sand(1.0, mu, 0.0, ROLLING_NONE);
+  Pair2 s;
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  Contact c = s.c();
+  double hist[6] = {1e-3, 5e-4, 0.0};    // far beyond the elastic limit
+  Result o;
+  compute(p, c, hist, true, o);
+  const double fs = std::hypot(o.fs[0], o.fs[1]);
+  expect_rel(fs, mu * o.fn);
+  // history rescaled so that k_t |xi| equals the cap
+  const double kts = p.kt * std::sqrt(c.reff * o.delta);
+  expect_rel(kts * std::hypot(hist[0], hist[1]), mu * o.fn);
+  expect_rel(hist[1] / hist[0], 0.5);
+}
+
+TEST(Tangential, NoSlipFrictionDoesNotOverflow)
+{
+  const Params p = sand(0.2, 1e10, 0.05);
+  Pair2 s;
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  s.vi[0] = 3.0;
+  s.wi[1] = 100.0;
+  Contact c = s.c();
+  double hist[6] = {1e-3, 0, 0, 0, 0, 0};
+  Result o;
+  for (int k = 0; k < 10; k++) compute(p, c, hist, true, o);
+  for (int k = 0; k < 3; k++) {
+    EXPECT_TRUE(std::isfinite(o.f[k]));
+    EXPECT_TRUE(std::isfinite(o.ti[k]));
+  }
+  // elastic: |fs| = k_t |xi| + damping, no cap
+  EXPECT_GT(std::fabs(o.fs[0]), 0.31 * o.fn);
+}
+
+TEST(Tangential, HistoryRotatedOntoTangentPlaneKeepsLength)
+{
+  const Params p = sand(1.0, 0.5, 0.0, ROLLING_NONE);
+  Pair2 s;
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  Contact c = s.c();
+  double hist[6] = {3e-7, 0.0, 4e-7};    // has a normal component
+  Result o;
+  compute(p, c, hist, true, o);
+  EXPECT_NEAR(hist[2], 0.0, 1e-22);
+  expect_rel(std::hypot(hist[0], hist[1]), 5e-7);
+}
+
+TEST(Rolling, EpsdStiffnessAndCap)
+{
+  const double mur = 0.05;
+  const Params p = sand(1.0, 0.31, mur, ROLLING_EPSD);
+  Pair2 s;
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  s.wi[0] = 1.0;    // relative rotation about x
+  Contact c = s.c();
+  double hist[6] = {0};
+  Result o;
+  compute(p, c, hist, true, o);
+  const double a = std::sqrt(c.reff * o.delta);
+  const double Es = E_SAND / (2 * (1 - NU * NU));
+  const double kn = 2.0 * Es * a;    // S_n
+  const double kr = 2.25 * kn * mur * mur * c.reff * c.reff;
+  const double theta = 1.0 * c.dt;
+  // fr = -k_s R* (w x n) dt and M_r = R* n x fr: |M_r| = k_r theta
+  expect_rel(std::fabs(c.reff * o.fr[1]), kr * theta);
+  // cap: huge accumulated rolling angle
+  double hist2[6] = {0, 0, 0, 0, 1.0, 0};
+  compute(p, c, hist2, true, o);
+  expect_rel(c.reff * std::hypot(o.fr[0], o.fr[1]), mur * c.reff * o.fn);
+}
+
+TEST(Rolling, CdtConstantTorque)
+{
+  const double mur = 0.05;
+  const Params p = sand(1.0, 0.31, mur, ROLLING_CDT);
+  Pair2 s;
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  for (double w : {1e-3, 1.0, 100.0}) {
+    s.wi[1] = w;
+    s.wj[1] = -w;    // pure relative rolling, no sliding of the contact point
+    Contact c = s.c();
+    double hist[6] = {0};
+    Result o;
+    compute(p, c, hist, true, o);
+    // torque magnitude mu_r R* F_n opposing the relative rotation (about y)
+    const double M = mur * c.reff * o.fn;
+    const double roll_i = o.ti[1] - (-(s.ri - 0.5 * o.delta)) * (o.fs[0]);
+    expect_rel(roll_i, -M, 1e-10);
+  }
+}
+
+TEST(Rolling, NoneHasNoRollingTorque)
+{
+  const Params p = sand(1.0, 0.31, 0.05, ROLLING_NONE);
+  Pair2 s;
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  s.wi[1] = 1.0;
+  s.wj[1] = -1.0;
+  Contact c = s.c();
+  double hist[6] = {0};
+  Result o;
+  compute(p, c, hist, true, o);
+  EXPECT_EQ(o.fr[0], 0.0);
+  EXPECT_EQ(o.fr[1], 0.0);
+}
+
+TEST(Wall, InfiniteRadiusAndMass)
+{
+  // wall contact: R* = r_i, lever arm r_i; E* from the particle and plate materials
+  const double Es = mix_E(E_SAND, NU, 200e9, NU);
+  const Params p = make_params(Es, mix_G(E_SAND, NU, 200e9, NU), 1.0, 0.3, 0.0, ROLLING_NONE, false);
+  const double ri = 2.5e-3, d = 1e-5;
+  double dx[3] = {0, 0, ri - d}, v[3] = {0.01, 0, 0}, z[3] = {0, 0, 0};
+  Contact c;
+  c.dx = dx; c.rsq = dx[2] * dx[2]; c.radsum = ri; c.reff = ri; c.meff = 1e-4;
+  c.radi = ri; c.radj = 0.0; c.vi = v; c.vj = z; c.wi = z; c.wj = z; c.wall = true; c.dt = 1e-6;
+  double hist[6] = {0};
+  Result o;
+  compute(p, c, hist, true, o);
+  expect_rel(o.fne, 4.0 / 3.0 * Es * std::sqrt(ri) * std::pow(o.delta, 1.5));
+  expect_rel(o.ti[1], -ri * o.fs[0]);
+}
