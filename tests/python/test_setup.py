@@ -1,0 +1,79 @@
+"""Set-up paths that must fail with a one-line explanation, not a stack trace: a tarball with
+the wrong sha256, a LAMMPS binary without a needed package, launcher misuse."""
+import os
+import re
+import stat
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
+BUILD = Path(os.environ.get("TBAGS_BUILD", ROOT / "build"))
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, **kw)
+
+
+def test_wrong_sha256_is_refused(tmp_path):
+    bogus = tmp_path / "lammps_20250204+dfsg.1.orig.tar.xz"
+    bogus.write_bytes(b"not the LAMMPS source")
+    env = dict(os.environ, LAMMPS_TARBALL=str(bogus))
+    r = run(["bash", str(ROOT / "cmake" / "fetch-lammps.sh"), str(tmp_path / "cache")], env=env)
+    assert r.returncode != 0
+    assert "sha256 mismatch" in r.stderr and "refusing to build" in r.stderr
+    assert not (tmp_path / "cache" / bogus.name).exists()    # the bad file is not kept
+
+
+def lammps_source_dir():
+    env_file = BUILD / "tbags-env.sh"
+    if not env_file.exists():
+        pytest.skip("no configured build")
+    for line in env_file.read_text().splitlines():
+        if line.startswith("LAMMPS_SOURCE_DIR="):
+            return line.split("=", 1)[1].strip("'")
+    pytest.skip("no LAMMPS_SOURCE_DIR in tbags-env.sh")
+
+
+@pytest.mark.parametrize("packages,missing", [("GRANULAR MOLECULE BPM", "PLUGIN"),
+                                               ("PLUGIN GRANULAR MOLECULE", "BPM")])
+def test_lammps_without_package_is_refused(tmp_path, packages, missing):
+    fake = tmp_path / "lmp"
+    fake.write_text("#!/bin/sh\nprintf 'Large-scale Atomic/Molecular Massively Parallel Simulator\\n\\n"
+                    "Installed packages:\\n\\n%s\\n\\nList of individual style options\\n'\n" % packages)
+    fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
+    r = run(["cmake", "-S", str(ROOT), "-B", str(tmp_path / "b"), "-DTBAGS_TESTS=OFF",
+             "-DLAMMPS_SOURCE_DIR=" + lammps_source_dir(), "-DLAMMPS_EXECUTABLE=" + str(fake)])
+    assert r.returncode != 0
+    assert "was built without the %s package" % missing in r.stderr
+
+
+def test_source_tree_that_is_not_lammps(tmp_path):
+    r = run(["cmake", "-S", str(ROOT), "-B", str(tmp_path / "b"), "-DTBAGS_TESTS=OFF",
+             "-DLAMMPS_SOURCE_DIR=" + str(tmp_path)])
+    assert r.returncode != 0 and "is not a LAMMPS source tree" in r.stderr
+
+
+def test_launcher_help_and_unknown_command():
+    r = run([str(ROOT / "tbags"), "help"])
+    assert r.returncode == 0 and "shear" in r.stdout and "test" in r.stdout
+    r = run([str(ROOT / "tbags"), "frobnicate"])
+    assert r.returncode != 0 and "unknown command 'frobnicate'" in r.stderr
+
+
+def test_launcher_run_missing_deck():
+    r = run([str(ROOT / "tbags"), "run", "/nonexistent/in.deck"])
+    assert r.returncode != 0 and "no deck" in r.stderr
+
+
+def test_launcher_runs_a_deck_with_the_plugin(tmp_path):
+    if not (BUILD / "tbags-env.sh").exists():
+        pytest.skip("no configured build")
+    deck = tmp_path / "in.list"
+    deck.write_text("plugin list\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n")
+    r = run([str(ROOT / "tbags"), "run", str(deck)], env=dict(os.environ, TBAGS_BUILD_DIR=str(BUILD)))
+    assert r.returncode == 0 and "gran/hertz/rolling" in r.stdout
+    r = run([str(ROOT / "tbags"), "run", str(deck), "-np", "2"], env=dict(os.environ, TBAGS_BUILD_DIR=str(BUILD)))
+    grid = re.search(r"(\d+) by (\d+) by (\d+) MPI processor grid", r.stdout)
+    assert r.returncode == 0 and grid and eval("*".join(grid.groups())) == 2
