@@ -42,8 +42,8 @@ def test_head_on_restitution(tmp_path, e, dj):
     assert abs(e_meas - e) < 0.005 * e
 
 
-# a small sphere on a huge fixed sphere (R = 1e4 m: flat to 1e-6 over the run) under gravity
-ON_PLANE = """
+# a small sphere (type 2) above a huge fixed sphere (type 1) whose top is the plane z = 0
+FLAT = """
 units si
 atom_style sphere
 atom_modify map array
@@ -52,12 +52,15 @@ comm_modify vel yes
 region box block -1 1 -1 1 -10001 0.1
 create_box 2 box
 create_atoms 1 single 0 0 -10000
-create_atoms 2 single 0 0 0.0025
+create_atoms 2 single 0 0 ZBALL
 set type 1 diameter 20000
 set type 2 diameter 0.005
 set type * density 2650
 group ball type 2
-pair_style gran/hertz/rolling ${model}
+"""
+
+# a small sphere on a huge fixed sphere (R = 1e4 m: flat to 1e-6 over the run) under gravity
+ON_PLANE = FLAT.replace("ZBALL", "0.0025") + """pair_style gran/hertz/rolling ${model}
 pair_coeff * * material 1.8e9 0.1 friction ${mu} rolling ${mur} restitution 0.2
 neigh_modify exclude type 1 1
 neighbor 0.001 nsq
@@ -94,18 +97,22 @@ def test_sliding_sphere_obeys_coulomb(tmp_path):
     assert abs(vx[-1] - 5 / 7 * v0) < 0.005 * v0
 
 
-def test_rolling_cdt_deceleration(tmp_path):
-    """CDT: a rolling solid sphere decelerates at a = 5/7 mu_r g R*/R."""
+def rolling_run(tmp_path, model, mur, nsteps, mu=0.9, v0=0.5):
+    """Launch the sphere at v0; returns t, vx and the deceleration fitted while it rolls."""
     import numpy as np
-    mu, mur, v0, g = 0.9, 0.05, 0.5, 9.81
-    lmprun.run(ON_PLANE, tmp_path, variables={"model": "cdt", "mu": mu, "mur": mur, "v0": v0,
-                                              "nsteps": 300000}).check()
+    lmprun.run(ON_PLANE, tmp_path, variables={"model": model, "mu": mu, "mur": mur, "v0": v0,
+                                              "nsteps": nsteps}).check()
     d = read_vx(tmp_path / "vx.txt")
     t, vx = d[:, 0] - d[0, 0], d[:, 1]
-    R, Rb = 0.0025, 1e4
-    a_th = 5 / 7 * mur * g * (R * Rb / (R + Rb)) / R
     roll = (t > 0.02) & (vx > 0.3 * vx.max())
-    a = -np.polyfit(t[roll], vx[roll], 1)[0]
+    return t, vx, -np.polyfit(t[roll], vx[roll], 1)[0]
+
+
+def test_rolling_cdt_deceleration(tmp_path):
+    """CDT: a rolling solid sphere decelerates at a = 5/7 mu_r g R*/R."""
+    mur, g, R, Rb = 0.05, 9.81, 0.0025, 1e4
+    t, vx, a = rolling_run(tmp_path, "cdt", mur, 300000)
+    a_th = 5 / 7 * mur * g * (R * Rb / (R + Rb)) / R
     print("CDT deceleration %.5f, theory %.5f" % (a, a_th))
     assert abs(a - a_th) < 0.02 * a_th
 
@@ -113,14 +120,9 @@ def test_rolling_cdt_deceleration(tmp_path):
 def test_rolling_epsd_stops_sphere(tmp_path):
     """EPSD: same deceleration while the spring slips, then the elastic spring holds the sphere."""
     import numpy as np
-    mu, mur, v0, g = 0.9, 0.2, 0.5, 9.81
-    lmprun.run(ON_PLANE, tmp_path, variables={"model": "epsd", "mu": mu, "mur": mur, "v0": v0,
-                                              "nsteps": 500000}).check()
-    d = read_vx(tmp_path / "vx.txt")
-    t, vx = d[:, 0] - d[0, 0], d[:, 1]
+    mur, g, v0 = 0.2, 9.81, 0.5
+    t, vx, a = rolling_run(tmp_path, "epsd", mur, 500000, v0=v0)
     a_th = 5 / 7 * mur * g
-    roll = (t > 0.02) & (vx > 0.3 * vx.max())
-    a = -np.polyfit(t[roll], vx[roll], 1)[0]
     t_stop = 0.02 + vx[t >= 0.02][0] / a_th
     late = t > t_stop + 0.02
     print("EPSD deceleration %.5f (theory %.5f); |v| after stop <= %.2e" % (a, a_th, np.abs(vx[late]).max()))
@@ -129,21 +131,7 @@ def test_rolling_epsd_stops_sphere(tmp_path):
 
 
 # oblique impact on a flat (a fixed sphere of R = 1e4 m), no gravity (Chung & Ooi 2011, test 6)
-OBLIQUE = """
-units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-region box block -1 1 -1 1 -10001 0.1
-create_box 2 box
-create_atoms 1 single 0 0 -10000
-create_atoms 2 single 0 0 0.0025002
-set type 1 diameter 20000
-set type 2 diameter 0.005
-set type * density 2650
-group ball type 2
-pair_style gran/hertz/rolling none
+OBLIQUE = FLAT.replace("ZBALL", "0.0025002") + """pair_style gran/hertz/rolling none
 pair_coeff * * material 1.8e9 0.1 friction ${mu} restitution ${e}
 neigh_modify exclude type 1 1
 neighbor 0.001 nsq
