@@ -283,6 +283,13 @@ double PairGranHertzRolling::init_one(int i, int j)
 void PairGranHertzRolling::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
+  if (rolling == law::ROLLING_EPSD) eval<law::ROLLING_EPSD>();
+  else if (rolling == law::ROLLING_CDT) eval<law::ROLLING_CDT>();
+  else eval<law::ROLLING_NONE>();
+}
+
+template <int ROLL> void PairGranHertzRolling::eval()
+{
   const bool update_hist = update->setupflag == 0;
 
   double **x = atom->x;
@@ -356,7 +363,7 @@ void PairGranHertzRolling::compute(int eflag, int vflag)
       c.vj = v[j];
       c.wi = omega[i];
       c.wj = omega[j];
-      law::compute(prow[type[j]], c, hist, update_hist, o);
+      law::compute_t<ROLL>(prow[type[j]], c, hist, update_hist, o);
 
       if (factor_lj != 1.0) {
         for (int k = 0; k < 3; k++) {

@@ -63,6 +63,7 @@ class PairGranHertzRolling : public Pair {
   class FixNeighHistory *fix_history;
 
   void allocate();
+  template <int ROLL> void eval();
   void contact_setup(int i, int j, double *hist_in, tbags::contact::Contact &c, double *vzero);
 };
 

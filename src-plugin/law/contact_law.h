@@ -108,21 +108,29 @@ struct Result {
 
 inline bool touching(double rsq, double radsum) { return rsq < radsum * radsum; }
 
-// One contact. hist: 3 (or 6 for EPSD) doubles, updated when update is true.
-inline void compute(const Params &p, const Contact &c, double *hist, bool update, Result &o)
+#if defined(__GNUC__)
+#define TBAGS_INLINE inline __attribute__((always_inline))
+#else
+#define TBAGS_INLINE inline
+#endif
+
+// One contact, with the rolling model fixed at compile time (the styles dispatch once per
+// compute). hist: 3 (or 6 for EPSD) doubles, updated when update is true.
+template <int ROLL>
+TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, bool update, Result &o)
 {
   using namespace vec;
   const double r = std::sqrt(c.rsq);
   const double rinv = 1.0 / r;
   const double delta = c.radsum - r;
-  double n[3] = {c.dx[0] * rinv, c.dx[1] * rinv, c.dx[2] * rinv};
+  const double n[3] = {c.dx[0] * rinv, c.dx[1] * rinv, c.dx[2] * rinv};
 
   // relative velocity at the contact point
   double vr[3];
   sub(c.vi, c.vj, vr);
   const double vnnr = dot(vr, n);
-  double wr[3] = {c.radi * c.wi[0] + c.radj * c.wj[0], c.radi * c.wi[1] + c.radj * c.wj[1],
-                  c.radi * c.wi[2] + c.radj * c.wj[2]};
+  const double wr[3] = {c.radi * c.wi[0] + c.radj * c.wj[0], c.radi * c.wi[1] + c.radj * c.wj[1],
+                        c.radi * c.wi[2] + c.radj * c.wj[2]};
   double wxn[3];
   cross(wr, n, wxn);
   double vtr[3];
@@ -145,8 +153,9 @@ inline void compute(const Params &p, const Contact &c, double *hist, bool update
     for (int k = 0; k < 3; k++) hist[k] += c.dt * vtr[k];
   }
   for (int k = 0; k < 3; k++) o.fs[k] = -damp_t * vtr[k] - kts * hist[k];
-  const double magfs = len(o.fs);
-  if (magfs > fscrit) {
+  const double fs2 = dot(o.fs, o.fs);
+  if (fs2 > fscrit * fscrit) {    // sliding: |fs| > mu |F_n| (squares: no sqrt when sticking)
+    const double magfs = std::sqrt(fs2);
     if (len(hist) != 0.0) {
       const double s = fscrit / magfs;
       for (int k = 0; k < 3; k++) hist[k] = -(s * o.fs[k] + damp_t * vtr[k]) / kts;
@@ -168,14 +177,14 @@ inline void compute(const Params &p, const Contact &c, double *hist, bool update
 
   // rolling resistance
   zero(o.fr);
-  if (p.rolling != ROLLING_NONE) {
+  if (ROLL != ROLLING_NONE && p.rolling != ROLLING_NONE) {
     double relrot[3];
     sub(c.wi, c.wj, relrot);
     double vrl[3];
     cross(relrot, n, vrl);
     scale(c.reff, vrl);
     const double frcrit = p.mur * fncrit;
-    if (p.rolling == ROLLING_EPSD) {
+    if (ROLL == ROLLING_EPSD) {
       double *hr = hist + 3;
       const double ks = p.krs * a;
       if (update) {
@@ -183,9 +192,9 @@ inline void compute(const Params &p, const Contact &c, double *hist, bool update
         for (int k = 0; k < 3; k++) hr[k] += c.dt * vrl[k];
       }
       for (int k = 0; k < 3; k++) o.fr[k] = -ks * hr[k];
-      const double magfr = len(o.fr);
-      if (magfr > frcrit) {
-        const double s = frcrit / magfr;
+      const double fr2 = dot(o.fr, o.fr);
+      if (fr2 > frcrit * frcrit) {
+        const double s = frcrit / std::sqrt(fr2);
         for (int k = 0; k < 3; k++) hr[k] = -s * o.fr[k] / ks;
         scale(s, o.fr);
       }
@@ -206,6 +215,14 @@ inline void compute(const Params &p, const Contact &c, double *hist, bool update
   o.fne = fne;
   o.delta = delta;
   o.r = r;
+}
+
+// One contact, rolling model from the parameters (tests, the plate fix, single()).
+inline void compute(const Params &p, const Contact &c, double *hist, bool update, Result &o)
+{
+  if (p.rolling == ROLLING_EPSD) compute_t<ROLLING_EPSD>(p, c, hist, update, o);
+  else if (p.rolling == ROLLING_CDT) compute_t<ROLLING_CDT>(p, c, hist, update, o);
+  else compute_t<ROLLING_NONE>(p, c, hist, update, o);
 }
 
 }    // namespace contact
