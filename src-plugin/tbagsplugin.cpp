@@ -3,6 +3,7 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "fix_wall_gran_servo.h"
 #include "pair_gran_hertz_rolling.h"
 
 #ifndef TBAGS_VERSION
@@ -14,6 +15,11 @@ using namespace LAMMPS_NS;
 static Pair *pair_gran_hertz_rolling_creator(LAMMPS *lmp)
 {
   return new PairGranHertzRolling(lmp);
+}
+
+static Fix *fix_wall_gran_servo_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixWallGranServo(lmp, argc, argv);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -28,5 +34,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.author = "T-BAGS DEM toolkit developers";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_gran_hertz_rolling_creator;
   plugin.handle = handle;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "wall/gran/servo";
+  plugin.info = "tbags " TBAGS_VERSION ": rigid plate with force servo, gran/hertz/rolling contact law";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_gran_servo_creator;
   (*register_plugin)(&plugin, lmp);
 }

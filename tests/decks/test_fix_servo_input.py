@@ -1,0 +1,71 @@
+"""Bad input for fix wall/gran/servo: each mistake is a LAMMPS ERROR (or, for an unreachable
+target, a WARNING) naming the fix and what to do."""
+import pytest
+
+import lmprun
+
+BASE = """
+units si
+atom_style sphere
+boundary p p f
+comm_modify vel yes
+region box block 0 0.02 0 0.02 0 0.03
+create_box 2 box
+create_atoms 1 single 0.01 0.01 0.01
+set type * diameter 0.005
+set type * density 2650
+PAIR
+FIX
+fix 1 all nve/sphere
+run RUN
+"""
+PAIR = ("pair_style gran/hertz/rolling epsd\n"
+        "pair_coeff * * material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2")
+PLATE = "fix p all wall/gran/servo zplane 0.0 +1 material 200e9 0.1 coeff * friction 1e10 rolling 0.05 restitution 0.2"
+
+
+def deck(fix, pair=PAIR, nrun=0):
+    return BASE.replace("PAIR", pair).replace("FIX", fix).replace("RUN", str(nrun))
+
+
+def test_good_plate_runs(tmp_path):
+    lmprun.run(deck(PLATE), tmp_path).check()
+
+
+BAD = [
+    (PLATE.replace("zplane", "wplane"), "unknown plane 'wplane'"),
+    (PLATE.replace("+1", "up"), "side must be +1"),
+    (PLATE + " colour red", "unknown keyword 'colour'"),
+    (PLATE.replace("material 200e9 0.1 ", ""), "missing 'material E nu' of the plate"),
+    (PLATE.replace("200e9", "-200e9"), "plate Young's modulus must be > 0"),
+    (PLATE.replace("coeff *", "coeff 2"), "particles of type 1 are in the group but have no plate coefficients"),
+    (PLATE.replace("restitution 0.2", "restitution 0"), "restitution must be in (0, 1]"),
+    (PLATE + " servo 10 gains 0 0 vmax 0.01", "servo gains must be KP > 0"),
+    (PLATE + " servo 10 gains 1e-3 0 vmax -1", "servo vmax must be > 0"),
+    (PLATE + " servo 10", "servo needs 'gains KP KI' and 'vmax V'"),
+    (PLATE + " velocity q 0.1", "velocity dimension must be x, y or z"),
+    (PLATE.replace("zplane 0.0", "zplane 0.0095"), "the plate starts 0.8 radii inside a particle"),
+    (PLATE + " velocity x v_nothing", "velocity variable nothing does not exist"),
+]
+
+
+@pytest.mark.parametrize("fix,message", BAD)
+def test_bad_input(tmp_path, fix, message):
+    res = lmprun.run(deck(fix), tmp_path)
+    assert res.returncode != 0, res.output[-1500:]
+    assert "wall/gran/servo" in res.error_line() and message in res.error_line(), res.error_line()
+
+
+def test_needs_our_pair_style(tmp_path):
+    stock = ("pair_style granular\npair_coeff * * hertz/material 1.8e9 0.2 0.1 tangential mindlin "
+             "NULL 1.0 0.31 damping coeff_restitution")
+    res = lmprun.run(deck(PLATE, pair=stock), tmp_path)
+    assert res.returncode != 0 and "pair_style gran/hertz/rolling" in res.error_line()
+
+
+def test_unreachable_target_warns(tmp_path):
+    # a plate far below a lone sphere that cannot supply 1e6 N: at vmax for too long -> warning
+    far = PLATE.replace("zplane 0.0", "zplane -0.5") + " servo 1e6 gains 1e-6 0 vmax 0.01 warn 2000"
+    res = lmprun.run(deck(far, nrun=3000), tmp_path).check()
+    warn = [l for l in res.output.splitlines() if "WARNING" in l and "wall/gran/servo" in l]
+    assert warn and "raise vmax, start the plate closer, or check the target" in warn[0]
