@@ -3,6 +3,7 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "bond_bpm_yarn.h"
 #include "fix_wall_gran_servo.h"
 #include "pair_gran_hertz_rolling.h"
 
@@ -20,6 +21,11 @@ static Pair *pair_gran_hertz_rolling_creator(LAMMPS *lmp)
 static Fix *fix_wall_gran_servo_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixWallGranServo(lmp, argc, argv);
+}
+
+static Bond *bond_bpm_yarn_creator(LAMMPS *lmp)
+{
+  return new BondBPMYarn(lmp);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -40,5 +46,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "wall/gran/servo";
   plugin.info = "tbags " TBAGS_VERSION ": rigid plate with force servo, gran/hertz/rolling contact law";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_gran_servo_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "bond";
+  plugin.name = "bpm/yarn";
+  plugin.info = "tbags " TBAGS_VERSION ": tension-only nonlinear yarn bond, bending, twisting, breaking";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &bond_bpm_yarn_creator;
   (*register_plugin)(&plugin, lmp);
 }

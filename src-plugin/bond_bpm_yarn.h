@@ -1,0 +1,39 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   T-BAGS DEM toolkit (tbags plugin for LAMMPS)
+   bond_style bpm/yarn: tension-only nonlinear yarn bond with bending, twisting and breaking,
+   on LAMMPS BPM's BondBPM base. The physics is law/yarn_law.h.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_BOND_BPM_YARN_H
+#define LMP_BOND_BPM_YARN_H
+
+#include "bond_bpm.h"
+#include "yarn_table.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class BondBPMYarn : public BondBPM {
+ public:
+  BondBPMYarn(class LAMMPS *);
+  ~BondBPMYarn() override;
+  void compute(int, int) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  void settings(int, char **) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_data(FILE *) override;
+  double single(int, double, int, int, double &) override;
+
+ protected:
+  std::vector<YarnCoeff> coeffs;    // per bond type, sized once (Params point into it)
+  void allocate();
+  void store_data();
+  bool bond_history(int i, int j, double *hist);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,41 @@
+/* -*- c++ -*- T-BAGS DEM toolkit: reading yarn strain-stress tables (LAMMPS table-file format)
+   and the bond_coeff keywords shared by bond_style bpm/yarn and bond_style yarn. */
+#ifndef LMP_TBAGS_YARN_TABLE_H
+#define LMP_TBAGS_YARN_TABLE_H
+
+#include "law/yarn_law.h"
+#include "pointers.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+// one bond type's yarn coefficients: the curve and the law's parameters
+struct YarnCoeff {
+  std::string file, keyword;
+  tbags::yarn::Curve curve;
+  tbags::yarn::Params p;
+  bool set = false;
+};
+
+// Parse 'bond_coeff T table FILE KEYWORD diameter D poisson NU [E E] [shear KAPPA]
+// [break EPS] [damping GN GS GR] [unload elastic|plastic]' from arg[1..]; 'style' names the
+// bond style in messages. axial_only: bond_style yarn (no bending keywords, no poisson needed).
+void parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg, YarnCoeff &c,
+                      bool axial_only);
+
+// Read the section KEYWORD of a yarn table file:
+//   KEYWORD
+//   N n [FORCE]        (FORCE: second column in N instead of Pa)
+//   (blank line)
+//   1 strain stress
+//   ...
+void read_yarn_table(LAMMPS *lmp, const char *style, const std::string &file,
+                     const std::string &keyword, tbags::yarn::Curve &curve, bool &force_table);
+
+// restart I/O of one YarnCoeff (proc 0 writes; all read through a broadcast)
+void write_yarn_coeff(FILE *fp, const YarnCoeff &c);
+void read_yarn_coeff(LAMMPS *lmp, FILE *fp, YarnCoeff &c);
+
+}    // namespace LAMMPS_NS
+#endif
