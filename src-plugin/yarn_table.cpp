@@ -4,12 +4,14 @@
 
 #include "comm.h"
 #include "error.h"
+#include "platform.h"
 #include "table_file_reader.h"
 #include "tokenizer.h"
 #include "utils.h"
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 using namespace LAMMPS_NS;
 
@@ -17,39 +19,60 @@ void LAMMPS_NS::read_yarn_table(LAMMPS *lmp, const char *style, const std::strin
                                 const std::string &keyword, tbags::yarn::Curve &curve,
                                 bool &force_table)
 {
+  // rank 0 reads (LAMMPS file readers are rank-0 only) and broadcasts the curve or the error
   Error *error = lmp->error;
+  MPI_Comm world = lmp->world;
   curve.eps.clear();
   curve.val.clear();
-  force_table = false;
-  try {
-    TableFileReader reader(lmp, file, "bond");
-    char *line = reader.find_section_start(keyword);
-    if (!line)
-      error->all(FLERR, "{}: no section '{}' in yarn table file {}", style, keyword, file);
-    line = reader.next_line();
-    ValueTokenizer head(line);
-    int n = 0;
-    while (head.has_next()) {
-      const std::string w = head.next_string();
-      if (w == "N") n = head.next_int();
-      else if (w == "FORCE") force_table = true;
-      else error->all(FLERR, "{}: unknown word '{}' in the N line of table {} ({})", style, w, keyword, file);
-    }
-    if (n < 2) error->all(FLERR, "{}: table {} in {} needs 'N n' with n >= 2", style, keyword, file);
-    reader.skip_line();
-    for (int i = 0; i < n; i++) {
+  int ftab = 0;
+  std::string why;
+  if (lmp->comm->me == 0) {
+    try {
+      if (!platform::file_is_readable(file))
+        throw std::runtime_error("the file is missing or unreadable");
+      TableFileReader reader(lmp, file, "bond");
+      char *line = reader.find_section_start(keyword);
+      if (!line) throw std::runtime_error("no section '" + keyword + "'");
       line = reader.next_line();
-      if (!line) error->all(FLERR, "{}: table {} in {} ends after {} of {} lines", style, keyword, file, i, n);
-      ValueTokenizer values(line);
-      values.next_int();
-      curve.eps.push_back(values.next_double());
-      curve.val.push_back(values.next_double());
+      ValueTokenizer head(line);
+      int n = 0;
+      while (head.has_next()) {
+        const std::string w = head.next_string();
+        if (w == "N") n = head.next_int();
+        else if (w == "FORCE") ftab = 1;
+        else throw std::runtime_error("unknown word '" + w + "' in the N line");
+      }
+      if (n < 2) throw std::runtime_error("the N line needs 'N n' with n >= 2");
+      reader.skip_line();
+      for (int i = 0; i < n; i++) {
+        line = reader.next_line();
+        if (!line) throw std::runtime_error("the table ends after " + std::to_string(i) + " lines");
+        ValueTokenizer values(line);
+        values.next_int();
+        curve.eps.push_back(values.next_double());
+        curve.val.push_back(values.next_double());
+      }
+    } catch (std::exception &e) {
+      why = e.what();
     }
-  } catch (std::exception &e) {
-    error->all(FLERR, "{}: cannot read yarn table {} from {}: {}", style, keyword, file, e.what());
   }
-  const char *why = tbags::yarn::check_curve(curve);
-  if (*why) error->all(FLERR, "{}: yarn table {} in {}: {}", style, keyword, file, why);
+  int len = (int) why.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, world);
+  if (len > 0) {
+    why.resize(len);
+    MPI_Bcast(&why[0], len, MPI_CHAR, 0, world);
+    error->all(FLERR, "{}: cannot read yarn table {} from {}: {}", style, keyword, file, why);
+  }
+  int n = (int) curve.eps.size();
+  MPI_Bcast(&n, 1, MPI_INT, 0, world);
+  MPI_Bcast(&ftab, 1, MPI_INT, 0, world);
+  curve.eps.resize(n);
+  curve.val.resize(n);
+  MPI_Bcast(curve.eps.data(), n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(curve.val.data(), n, MPI_DOUBLE, 0, world);
+  force_table = ftab != 0;
+  const char *bad = tbags::yarn::check_curve(curve);
+  if (*bad) error->all(FLERR, "{}: yarn table {} in {}: {}", style, keyword, file, bad);
 }
 
 void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg,
