@@ -72,7 +72,7 @@ void BondBPMYarn::coeff(int narg, char **arg)
   int ilo, ihi;
   utils::bounds(FLERR, arg[0], 1, atom->nbondtypes, ilo, ihi, error);
   YarnCoeff c;
-  parse_yarn_coeff(lmp, STYLE, narg, arg, c, false);
+  parse_yarn_coeff(lmp, STYLE, narg, arg, c);
   for (int i = ilo; i <= ihi; i++) {
     coeffs[i] = c;
     coeffs[i].p.curve = &coeffs[i].curve;

@@ -4,6 +4,7 @@
 #include "version.h"
 
 #include "bond_bpm_yarn.h"
+#include "bond_yarn.h"
 #include "fix_wall_gran_servo.h"
 #include "pair_gran_hertz_rolling.h"
 
@@ -26,6 +27,11 @@ static Fix *fix_wall_gran_servo_creator(LAMMPS *lmp, int argc, char **argv)
 static Bond *bond_bpm_yarn_creator(LAMMPS *lmp)
 {
   return new BondBPMYarn(lmp);
+}
+
+static Bond *bond_yarn_creator(LAMMPS *lmp)
+{
+  return new BondYarn(lmp);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -52,5 +58,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "bpm/yarn";
   plugin.info = "tbags " TBAGS_VERSION ": tension-only nonlinear yarn bond, bending, twisting, breaking";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &bond_bpm_yarn_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "yarn";
+  plugin.info = "tbags " TBAGS_VERSION ": tension-only nonlinear yarn bond (axial) for any atom style";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &bond_yarn_creator;
   (*register_plugin)(&plugin, lmp);
 }

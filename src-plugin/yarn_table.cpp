@@ -76,12 +76,14 @@ void LAMMPS_NS::read_yarn_table(LAMMPS *lmp, const char *style, const std::strin
 }
 
 void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg,
-                                 YarnCoeff &c, bool axial_only)
+                                 YarnCoeff &c, double *r0)
 {
+  const bool axial_only = r0 != nullptr;
+  if (r0) *r0 = -1.0;
   Error *error = lmp->error;
   if (narg < 4 || strcmp(arg[1], "table") != 0)
     error->all(FLERR, "{}: write 'bond_coeff T table FILE KEYWORD diameter D{}'", style,
-               axial_only ? "" : " poisson NU");
+               axial_only ? " r0 R0" : " poisson NU");
   c.file = arg[2];
   c.keyword = arg[3];
   read_yarn_table(lmp, style, c.file, c.keyword, c.curve, c.p.force_table);
@@ -103,7 +105,16 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
       need(1);
       brk = num(1);
       iarg += 2;
-    } else if (kw == "damping") {
+    } else if (axial_only && kw == "r0") {
+      need(1);
+      *r0 = num(1);
+      iarg += 2;
+    } else if (axial_only && kw == "damping") {
+      need(1);
+      c.p.gn = num(1);
+      if (c.p.gn < 0.0) error->all(FLERR, "{}: damping must be >= 0", style);
+      iarg += 2;
+    } else if (!axial_only && kw == "damping") {
       need(3);
       c.p.gn = num(1);
       c.p.gs = num(2);
@@ -111,7 +122,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
       if (c.p.gn < 0.0 || c.p.gs < 0.0 || c.p.gr < 0.0)
         error->all(FLERR, "{}: damping coefficients must be >= 0", style);
       iarg += 4;
-    } else if (kw == "unload") {
+    } else if (!axial_only && kw == "unload") {
       need(1);
       if (strcmp(arg[iarg + 1], "plastic") == 0) c.p.plastic = true;
       else if (strcmp(arg[iarg + 1], "elastic") == 0) c.p.plastic = false;
@@ -135,6 +146,8 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
   }
   if (c.p.d <= 0.0)
     error->all(FLERR, "{}: bond_coeff needs 'diameter D' with D > 0 (m)", style);
+  if (axial_only && *r0 <= 0.0)
+    error->all(FLERR, "{}: bond_coeff needs 'r0 R0' with R0 > 0 (m), the unstretched length", style);
   const double last = c.curve.eps.back();
   if (brk < 0.0) brk = last;
   if (brk <= 0.0 || brk > last)

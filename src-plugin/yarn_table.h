@@ -20,9 +20,10 @@ struct YarnCoeff {
 
 // Parse 'bond_coeff T table FILE KEYWORD diameter D poisson NU [E E] [shear KAPPA]
 // [break EPS] [damping GN GS GR] [unload elastic|plastic]' from arg[1..]; 'style' names the
-// bond style in messages. axial_only: bond_style yarn (no bending keywords, no poisson needed).
+// bond style in messages. With r0 given (bond_style yarn): the axial law only, 'r0 R0'
+// required, 'damping GN' (axial) and no bending, shear, twisting or plastic keywords.
 void parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg, YarnCoeff &c,
-                      bool axial_only);
+                      double *r0 = nullptr);
 
 // Read the section KEYWORD of a yarn table file:
 //   KEYWORD
