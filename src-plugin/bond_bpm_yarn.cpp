@@ -88,7 +88,7 @@ void BondBPMYarn::init_style()
                "atom styles use bond_style yarn", STYLE);
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "{} requires ghost velocities: add 'comm_modify vel yes'", STYLE);
-  if (modify->get_fix_by_style("^nve/bpm/sphere").empty() && comm->me == 0)
+  if (modify->get_fix_by_style("^nve/bpm/sphere").empty() && comm->me == 0 && !warned_integrator++)
     error->warning(FLERR, "{}: particles with bending/twisting bonds should be integrated with "
                    "fix nve/bpm/sphere (orientations and torques)", STYLE);
 }

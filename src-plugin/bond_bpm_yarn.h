@@ -29,6 +29,7 @@ class BondBPMYarn : public BondBPM {
 
  protected:
   std::vector<YarnCoeff> coeffs;    // per bond type, sized once (Params point into it)
+  int warned_integrator = 0;
   void allocate();
   void store_data();
   bool bond_history(int i, int j, double *hist);

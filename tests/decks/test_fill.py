@@ -1,0 +1,27 @@
+"""inputs/in.fill on a small bag: the exact count at void ratio 0.68 +/- 0.01, equal number
+fractions of the ten sizes, settled with small overlaps and every bag bond intact."""
+import numpy as np
+
+import lmprun
+
+SIZES = 0.00360465 + 0.000310078 * np.arange(10)
+
+
+def test_fill_small_bag(tmp_path):
+    lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path, variables={"nx": 11, "ny": 11, "nz": 5}).check()
+    res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables={
+        "nx": 11, "ny": 11, "nz": 5, "tbags": lmprun.ROOT}).check()
+    line = [l for l in res.output.splitlines() if l.startswith("FILL")][0]
+    print(line)
+    w = line.replace(",", "").split()
+    grains, e = int(w[6]), float(w[10])
+    inner = 9 * 9 * 3 * 0.005 ** 3
+    assert grains == round(inner / (1.68 * np.mean(np.pi / 6 * SIZES ** 3)))
+    assert abs(e - 0.68) < 0.01 and "ERROR" not in res.output and "not settled" not in res.output
+    # sizes in the data file: equal number fractions (within one grain)
+    data = (tmp_path / "fill.data").read_text()
+    atoms = data[data.index("Atoms"):data.index("Velocities")].splitlines()[2:]
+    rows = np.array([[float(x) for x in l.split()[:7]] for l in atoms if l.strip()])
+    sand = rows[rows[:, 2] == 2]    # bpm/sphere: id molecule type diameter density x y z
+    counts = [np.sum(np.isclose(sand[:, 3], d, rtol=1e-6)) for d in SIZES]
+    assert len(sand) == grains and max(counts) - min(counts) <= 1, counts
