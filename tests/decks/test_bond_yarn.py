@@ -187,6 +187,19 @@ create_bonds many all all 1 0.0049 0.0051
 write_data sheet.data nocoeff
 """
 
+# both ends pulled apart fast enough to tear the sheet; the middle integrated
+PULL_ENDS = """region left block -0.0005 0.0005 INF INF INF INF units box
+region right block 0.0595 0.0605 INF INF INF INF units box
+group left region left
+group right region right
+group middle subtract all left right
+fix pullL left move linear -3 0 0 units box
+fix pullR right move linear 3 0 0 units box
+fix integrate middle nve/bpm/sphere
+compute nb all nbond/atom
+compute nbt all reduce sum c_nb
+"""
+
 # the yarn bond overlays the contact law (special weights 1: bonded neighbours still touch in
 # compression); both ends pulled apart fast enough to tear the sheet
 SHEET = """
@@ -202,16 +215,7 @@ pair_style gran/hertz/rolling epsd
 pair_coeff 1 1 material 0.75e9 0.1 friction 0.26 rolling 0.05 restitution 0.2
 bond_style bpm/yarn overlay/pair yes
 bond_coeff 1 table %s YARN_PP_TAPE diameter 0.001 poisson 0.3 damping 1e-3 1e-3 1e-8
-region left block -0.0005 0.0005 INF INF INF INF units box
-region right block 0.0595 0.0605 INF INF INF INF units box
-group left region left
-group right region right
-group middle subtract all left right
-fix pullL left move linear -3 0 0 units box
-fix pullR right move linear 3 0 0 units box
-fix integrate middle nve/bpm/sphere
-compute nb all nbond/atom
-compute nbt all reduce sum c_nb
+PULL_ENDS
 thermo_style custom step c_nbt
 thermo 500
 timestep 1e-6
@@ -220,27 +224,18 @@ ${checkpoint}
 run ${n2}
 print "BONDS $(c_nbt)"
 write_dump all custom sheet.dump id x y z vx vy vz modify sort id format float %%.17g
-""" % TABLE
+""".replace("PULL_ENDS\n", PULL_ENDS) % TABLE
 
 SHEET_RESTART = """
 units si
 read_restart sheet.restart
 comm_modify vel yes cutoff 0.012
-region left block -0.0005 0.0005 INF INF INF INF units box
-region right block 0.0595 0.0605 INF INF INF INF units box
-group left region left
-group right region right
-group middle subtract all left right
-fix pullL left move linear -3 0 0 units box
-fix pullR right move linear 3 0 0 units box
-fix integrate middle nve/bpm/sphere
-compute nb all nbond/atom
-compute nbt all reduce sum c_nb
+PULL_ENDS
 timestep 1e-6
 run ${n2}
 print "BONDS $(c_nbt)"
 write_dump all custom sheet_restart.dump id x y z vx vy vz modify sort id format float %.17g
-"""
+""".replace("PULL_ENDS\n", PULL_ENDS)
 
 
 def sheet(wd, data, ranks=1, newton_bond="off", checkpoint=False):

@@ -9,13 +9,16 @@ import lmprun
 TABLE = lmprun.ROOT / "inputs" / "yarn_pp_tape.table"
 COEFF = "table %s YARN_PP_TAPE diameter 0.001 r0 0.005" % TABLE
 
-DUMBBELL = """
+# two particles of 30 mg in a 10 cm box
+BOX = """
 units si
 atom_style bond
 atom_modify map array
 boundary f f f
 region box block -0.05 0.05 -0.05 0.05 -0.05 0.05
-create_box 1 box bond/types 2 extra/bond/per/atom 1
+"""
+
+DUMBBELL = BOX + """create_box 1 box bond/types 2 extra/bond/per/atom 1
 create_atoms 1 single -0.0026 0 0
 create_atoms 1 single 0.0026 0 0
 mass 1 3e-5
@@ -89,13 +92,7 @@ def test_bond_write_follows_table(tmp_path):
     assert err < 1e-10 and np.all(e[eps <= 0] == 0.0)
 
 
-BREAK = """
-units si
-atom_style bond
-atom_modify map array
-boundary f f f
-region box block -0.05 0.05 -0.05 0.05 -0.05 0.05
-create_box 1 box bond/types 1 extra/bond/per/atom 1
+BREAK = BOX + """create_box 1 box bond/types 1 extra/bond/per/atom 1
 create_atoms 1 single 0 0 0
 create_atoms 1 single 0.005 0 0
 mass 1 3e-5
