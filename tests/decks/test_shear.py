@@ -39,3 +39,25 @@ def test_protocol_on_a_tiny_bag(filled):
 def test_bad_variables(tmp_path, var, message):
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, **var))
     assert res.returncode != 0 and message in res.output
+
+
+def test_resume_from_checkpoint(filled, tmp_path):
+    """A checkpoint written while shearing resumes the shear stage: the plate continues from its
+    state and the CSV is appended up to u_final. The resumed run starts with a fresh force
+    evaluation (LAMMPS setup uses full-step velocities), so it is close, not bit-identical."""
+    import shutil
+    shutil.copy(filled / "fill.data", tmp_path)
+    v = dict(SIZE, v=0.02, ufinal=0.0006, du_dump=0.0002)
+    lmprun.run(INPUTS / "in.shear", tmp_path, variables=v).check()
+    straight = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)
+    older = min(tmp_path.glob("shear.restart.*"), key=lambda p: p.stat().st_mtime_ns)
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(v, restart=older.name)).check()
+    rows = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)[len(straight):]
+    first = rows[0]
+    same = straight[np.isclose(straight["u_mm"], first["u_mm"])][0]
+    print("resumed at u = %.2f mm: S %.3f N (straight %.3f), w %.4f mm (straight %.4f); last u %.2f mm"
+          % (first["u_mm"], first["S_N"], same["S_N"], first["w_mm"], same["w_mm"], rows["u_mm"][-1]))
+    assert 0.0 < first["u_mm"] < 0.6 and rows["u_mm"][-1] == pytest.approx(0.6, abs=1e-3)
+    assert abs(first["S_N"] - same["S_N"]) < 0.01 * abs(same["S_N"])
+    assert abs(first["w_mm"] - same["w_mm"]) < 1e-3
+    assert "SHEARED: u 0.600 mm" in res.output
