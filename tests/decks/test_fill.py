@@ -15,6 +15,7 @@ def test_fill_small_bag(tmp_path):
     print(line)
     w = line.replace(",", "").split()
     grains, e = int(w[6]), float(w[10])
+    assert float(w[15]) < 0.01 * SIZES[0] * 1000    # sand-sand overlap, mm
     inner = 9 * 9 * 3 * 0.005 ** 3
     assert grains == round(inner / (1.68 * np.mean(np.pi / 6 * SIZES ** 3)))
     assert abs(e - 0.68) < 0.01 and "ERROR" not in res.output and "not settled" not in res.output
