@@ -61,3 +61,19 @@ def test_resume_from_checkpoint(filled, tmp_path):
     assert abs(first["S_N"] - same["S_N"]) < 0.01 * abs(same["S_N"])
     assert abs(first["w_mm"] - same["w_mm"]) < 1e-3
     assert "SHEARED: u 0.600 mm" in res.output
+
+
+def test_same_on_one_and_two_ranks(filled, tmp_path):
+    """The whole shear stage (compression and the first 0.2 mm of shear) on 1 and 2 ranks gives
+    the same CSV, digit for digit (forces agree to round-off, which the CSV's 4 decimals hide)."""
+    import shutil
+    v = dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.001)
+    csv = {}
+    for ranks in (1, 2):
+        wd = tmp_path / str(ranks)
+        wd.mkdir()
+        shutil.copy(filled / "fill.data", wd)
+        lmprun.run(INPUTS / "in.shear", wd, np_ranks=ranks, variables=v).check()
+        csv[ranks] = (wd / "shear.csv").read_text()
+    print(csv[2])
+    assert csv[1] == csv[2] and len(csv[1].splitlines()) >= 4
