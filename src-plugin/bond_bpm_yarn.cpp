@@ -75,7 +75,6 @@ void BondBPMYarn::coeff(int narg, char **arg)
   parse_yarn_coeff(lmp, STYLE, narg, arg, c);
   for (int i = ilo; i <= ihi; i++) {
     coeffs[i] = c;
-    coeffs[i].p.curve = &coeffs[i].curve;
     setflag[i] = 1;
   }
 }
@@ -126,9 +125,7 @@ void BondBPMYarn::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
 
   double **x = atom->x;
-  double **v = atom->v;
   double **f = atom->f;
-  double **omega = atom->omega;
   double **torque = atom->torque;
   const tagint *tag = atom->tag;
   int **bondlist = neighbor->bondlist;
@@ -138,8 +135,6 @@ void BondBPMYarn::compute(int eflag, int vflag)
   double **bondstore = fix_bond_history->bondstore;
   const bool update_hist = update->setupflag == 0;
 
-  yarn::Bond b;
-  b.dt = update->dt;
   yarn::Result o;
   for (int n = 0; n < nbondlist; n++) {
     if (bondlist[n][2] <= 0) continue;
@@ -153,14 +148,8 @@ void BondBPMYarn::compute(int eflag, int vflag)
       hist[yarn::R0] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       for (int k = 1; k < yarn::NHISTORY; k++) hist[k] = 0.0;
     }
-    b.xi = x[i1];
-    b.xj = x[i2];
-    b.vi = v[i1];
-    b.vj = v[i2];
-    b.wi = omega[i1];
-    b.wj = omega[i2];
     const yarn::Params &p = coeffs[type].p;
-    yarn::compute(p, b, hist, update_hist, o);
+    yarn::compute(p, bond_state(i1, i2), hist, update_hist, o);
     if (o.broken && break_flag) {
       bondlist[n][2] = 0;
       process_broken(i1, i2);
@@ -219,16 +208,8 @@ double BondBPMYarn::single(int type, double rsq, int i, int j, double &fforce)
   if (atom->tag[j] < atom->tag[i]) std::swap(i, j);
   double hist[yarn::NHISTORY];
   if (!bond_history(i, j, hist) || !(hist[yarn::R0] > 0.0)) return 0.0;
-  yarn::Bond b;
-  b.xi = atom->x[i];
-  b.xj = atom->x[j];
-  b.vi = atom->v[i];
-  b.vj = atom->v[j];
-  b.wi = atom->omega[i];
-  b.wj = atom->omega[j];
-  b.dt = update->dt;
   yarn::Result o;
-  yarn::compute(coeffs[type].p, b, hist, false, o);
+  yarn::compute(coeffs[type].p, bond_state(i, j), hist, false, o);
   const double r = sqrt(rsq);
   fforce = -o.fax / r;    // attractive in tension
   svector[0] = o.eps;

@@ -7,7 +7,9 @@
 #ifndef LMP_BOND_BPM_YARN_H
 #define LMP_BOND_BPM_YARN_H
 
+#include "atom.h"
 #include "bond_bpm.h"
+#include "update.h"
 #include "yarn_table.h"
 
 #include <vector>
@@ -33,6 +35,19 @@ class BondBPMYarn : public BondBPM {
   void allocate();
   void store_data();
   bool bond_history(int i, int j, double *hist);
+  // the law's view of the bond i-j (ends ordered by the caller)
+  tbags::yarn::Bond bond_state(int i, int j) const
+  {
+    tbags::yarn::Bond b;
+    b.xi = atom->x[i];
+    b.xj = atom->x[j];
+    b.vi = atom->v[i];
+    b.vj = atom->v[j];
+    b.wi = atom->omega[i];
+    b.wj = atom->omega[j];
+    b.dt = update->dt;
+    return b;
+  }
 };
 
 }    // namespace LAMMPS_NS

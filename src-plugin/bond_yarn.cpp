@@ -57,7 +57,6 @@ void BondYarn::coeff(int narg, char **arg)
   parse_yarn_coeff(lmp, STYLE, narg, arg, c, &len);
   for (int i = ilo; i <= ihi; i++) {
     coeffs[i] = c;
-    coeffs[i].p.curve = &coeffs[i].curve;
     r0[i] = len;
     setflag[i] = 1;
   }

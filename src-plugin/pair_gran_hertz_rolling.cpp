@@ -293,14 +293,10 @@ template <int ROLL> void PairGranHertzRolling::eval()
   const bool update_hist = update->setupflag == 0;
 
   double **x = atom->x;
-  double **v = atom->v;
   double **f = atom->f;
-  double **omega = atom->omega;
   double **torque = atom->torque;
   const double *radius = atom->radius;
-  const double *rmass = atom->rmass;
   const int *type = atom->type;
-  const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
   const double *special_lj = force->special_lj;
@@ -348,21 +344,7 @@ template <int ROLL> void PairGranHertzRolling::eval()
       }
       touch[jj] = 1;
 
-      double meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
-      if (mask[i] & freeze_group_bit) meff = rmass[j];
-      if (mask[j] & freeze_group_bit) meff = rmass[i];
-
-      c.dx = dx;
-      c.rsq = rsq;
-      c.radsum = radsum;
-      c.radi = radi;
-      c.radj = radius[j];
-      c.reff = radi * radius[j] / radsum;
-      c.meff = meff;
-      c.vi = v[i];
-      c.vj = v[j];
-      c.wi = omega[i];
-      c.wj = omega[j];
+      set_contact(i, j, dx, rsq, radsum, c);
       law::compute_t<ROLL>(prow[type[j]], c, hist, update_hist, o);
 
       if (factor_lj != 1.0) {
@@ -429,21 +411,8 @@ double PairGranHertzRolling::single(int i, int j, int itype, int jtype, double r
 
   double **x = atom->x;
   double dx[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-  double meff = atom->rmass[i] * atom->rmass[j] / (atom->rmass[i] + atom->rmass[j]);
-  if (atom->mask[i] & freeze_group_bit) meff = atom->rmass[j];
-  if (atom->mask[j] & freeze_group_bit) meff = atom->rmass[i];
   law::Contact c;
-  c.dx = dx;
-  c.rsq = rsq;
-  c.radsum = radsum;
-  c.radi = atom->radius[i];
-  c.radj = atom->radius[j];
-  c.reff = c.radi * c.radj / radsum;
-  c.meff = meff;
-  c.vi = atom->v[i];
-  c.vj = atom->v[j];
-  c.wi = atom->omega[i];
-  c.wj = atom->omega[j];
+  set_contact(i, j, dx, rsq, radsum, c);
   c.wall = false;
   c.dt = update->dt;
   law::Result o;

@@ -6,6 +6,7 @@
 #ifndef LMP_PAIR_GRAN_HERTZ_ROLLING_H
 #define LMP_PAIR_GRAN_HERTZ_ROLLING_H
 
+#include "atom.h"
 #include "pair.h"
 #include "law/contact_law.h"
 
@@ -64,7 +65,27 @@ class PairGranHertzRolling : public Pair {
 
   void allocate();
   template <int ROLL> void eval();
-  void contact_setup(int i, int j, double *hist_in, tbags::contact::Contact &c, double *vzero);
+  // geometry and kinematics of the pair i-j for the law (dx = x_i - x_j, already computed);
+  // m* is the other particle's mass when one of them is frozen (fix freeze)
+  void set_contact(int i, int j, double *dx, double rsq, double radsum,
+                   tbags::contact::Contact &c) const
+  {
+    const double *rmass = atom->rmass;
+    double meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
+    if (atom->mask[i] & freeze_group_bit) meff = rmass[j];
+    if (atom->mask[j] & freeze_group_bit) meff = rmass[i];
+    c.dx = dx;
+    c.rsq = rsq;
+    c.radsum = radsum;
+    c.radi = atom->radius[i];
+    c.radj = atom->radius[j];
+    c.reff = c.radi * c.radj / radsum;
+    c.meff = meff;
+    c.vi = atom->v[i];
+    c.vj = atom->v[j];
+    c.wi = atom->omega[i];
+    c.wj = atom->omega[j];
+  }
 };
 
 }    // namespace LAMMPS_NS

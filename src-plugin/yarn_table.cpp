@@ -165,7 +165,6 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
     c.p.nu = nu;
     c.p.kappa = kappa;
   }
-  c.p.curve = &c.curve;
   c.set = true;
 }
 
@@ -230,5 +229,4 @@ void LAMMPS_NS::read_yarn_coeff(LAMMPS *lmp, FILE *fp, YarnCoeff &c)
     MPI_Bcast(buf.data(), len, MPI_CHAR, 0, world);
     *s = buf.data();
   }
-  c.p.curve = &c.curve;
 }

@@ -14,8 +14,24 @@ namespace LAMMPS_NS {
 struct YarnCoeff {
   std::string file, keyword;
   tbags::yarn::Curve curve;
-  tbags::yarn::Params p;
+  tbags::yarn::Params p;    // p.curve always points at this object's curve
   bool set = false;
+
+  YarnCoeff() { p.curve = &curve; }
+  YarnCoeff(const YarnCoeff &o) : file(o.file), keyword(o.keyword), curve(o.curve), p(o.p), set(o.set)
+  {
+    p.curve = &curve;
+  }
+  YarnCoeff &operator=(const YarnCoeff &o)
+  {
+    file = o.file;
+    keyword = o.keyword;
+    curve = o.curve;
+    p = o.p;
+    p.curve = &curve;
+    set = o.set;
+    return *this;
+  }
 };
 
 // Parse 'bond_coeff T table FILE KEYWORD diameter D poisson NU [E E] [shear KAPPA]
