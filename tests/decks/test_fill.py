@@ -11,7 +11,7 @@ def test_fill_small_bag(tmp_path):
     lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path, variables={"nx": 11, "ny": 11, "nz": 5}).check()
     res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables={
         "nx": 11, "ny": 11, "nz": 5, "tbags": lmprun.ROOT}).check()
-    line = [l for l in res.output.splitlines() if l.startswith("FILL")][0]
+    line = [l for l in res.output.splitlines() if l.startswith("FILL ") and "PLAN" not in l][0]
     print(line)
     w = line.replace(",", "").split()
     grains, e = int(w[6]), float(w[10])
@@ -26,3 +26,23 @@ def test_fill_small_bag(tmp_path):
     sand = rows[rows[:, 2] == 2]    # bpm/sphere: id molecule type diameter density x y z
     counts = [np.sum(np.isclose(sand[:, 3], d, rtol=1e-6)) for d in SIZES]
     assert len(sand) == grains and max(counts) - min(counts) <= 1, counts
+    e_exact = inner / np.sum(np.pi / 6 * sand[:, 3] ** 3) - 1
+    assert abs(e - e_exact) < 1e-4, (e, e_exact)
+
+
+def test_paper_bag_holds_the_papers_count(tmp_path):
+    """81 x 81 x 17: 97,130 grains, 9,713 of each size (MODEL.md section 2), e = 0.68 +/- 0.01."""
+    lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path).check()
+    res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables={
+        "tbags": lmprun.ROOT, "plan_only": 1}).check()
+    line = [l for l in res.output.splitlines() if l.startswith("FILL PLAN")][0]
+    print(line)
+    w = line.replace(",", "").split()
+    assert int(w[2]) == 97130 and "(9713 to 9713 of each size)" in line and abs(float(w[-1]) - 0.68) < 0.01
+
+
+def test_bad_count(tmp_path):
+    lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path, variables={"nx": 5, "ny": 5, "nz": 5}).check()
+    res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables={
+        "nx": 5, "ny": 5, "nz": 5, "tbags": lmprun.ROOT, "per_size": 0})
+    assert res.returncode != 0 and "per_size must be >= 1" in res.output
