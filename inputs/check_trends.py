@@ -1,0 +1,167 @@
+#!/usr/bin/python3
+"""Check the paper's findings (MODEL.md section 4) on the runs of `./tbags shear trends`.
+
+usage: /usr/bin/python3 inputs/check_trends.py TRENDS_DIR          (F5500/, F3730/, F1960/ inside)
+       /usr/bin/python3 inputs/check_trends.py --speed RUN_A RUN_B [--tol 0.1]
+
+Trends (from each load's shear.csv, and the last dumps of the highest load):
+  1. shear strength rises with F_v: peak S(5.50 kN) > peak S(3.73 kN) > peak S(1.96 kN);
+  2. w contracts first, then dilates: the lowest w (relative to w at u = 0) comes before the end
+     and w then rises by more than 1 % of the contraction, at every load;
+  3. larger F_v, more contraction and less dilatancy: contraction (w0 - w_min) rises with F_v,
+     dilatancy (w_end - w_min) falls with F_v;
+  4. the top surface detaches from the top plate: at the last dump of the highest load, some of
+     the bag's top-face particles are more than 0.5 mm below the plate;
+  5. contact forces are larger near the edges: in the central cross-section (|y - y_c| < 10 mm)
+     the mean normal force of contacts within 10 mm of the bag's sides exceeds that within the
+     central half.
+Speed (quasi-static check): the two runs' S-u curves, interpolated on the shared u range beyond
+0.5 mm, differ by at most TOL times the larger run's peak S (root mean square and maximum).
+Prints every measured number; exits 1 if a check fails.
+"""
+import argparse
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+
+LOADS = (5500, 3730, 1960)
+
+
+def read_csv(run):
+    path = Path(run) / "shear.csv"
+    if not path.is_file():
+        raise SystemExit("check_trends: no %s (did the shear stage run?)" % path)
+    d = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True))
+    if d.dtype.names is None or "S_N" not in d.dtype.names or len(d) < 5:
+        raise SystemExit("check_trends: %s is malformed or has fewer than 5 rows" % path)
+    return d
+
+
+def read_dump(path):
+    """columns of a LAMMPS text dump's last snapshot as a dict name -> array."""
+    lines = Path(path).read_text().splitlines()
+    k = max(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS") or l.startswith("ITEM: ENTRIES"))
+    names = lines[k].split()[2:]
+    n = int(lines[k - 5].split()[0]) if lines[k - 6].startswith("ITEM: NUMBER") else None
+    rows = [l.split() for l in lines[k + 1:] if l.strip()]
+    if n is not None and len(rows) != n:
+        raise SystemExit("check_trends: %s is truncated (%d of %d rows)" % (path, len(rows), n))
+    a = np.array(rows, dtype=float).reshape(-1, len(names))
+    return {c: a[:, i] for i, c in enumerate(names)}
+
+
+def last_dump(run, kind):
+    files = sorted(Path(run).glob("dump.%s.*" % kind), key=lambda p: int(p.suffix[1:]))
+    if not files:
+        raise SystemExit("check_trends: no dump.%s.* in %s" % (kind, run))
+    return files[-1], int(files[-1].suffix[1:])
+
+
+def timestep(run):
+    m = re.search(r"TIMESTEP:.*using ([0-9.eE+-]+) s", (Path(run) / "log.shear").read_text())
+    if not m:
+        raise SystemExit("check_trends: no TIMESTEP line in %s/log.shear" % run)
+    return float(m.group(1))
+
+
+def w_path(d):
+    """contraction (w0 - w_min, mm), dilatancy (w_end - w_min, mm), u at w_min (mm)."""
+    w = d["w_mm"] - d["w_mm"][0]
+    i = int(np.argmin(w))
+    return -w[i], w[-1] - w[i], d["u_mm"][i]
+
+
+def detachment(run, gap_mm=0.5):
+    """fraction of the bag's top-face particles more than gap_mm below the plate at the last dump."""
+    path, step = last_dump(run, "grains")
+    g = read_dump(path)
+    d = read_csv(run)
+    zplate = np.interp(step * timestep(run), d["time_s"], d["zplate_mm"]) / 1000
+    bag = g["type"] == 1
+    z0 = g["z"] - g["dz"]
+    top = bag & (z0 > z0[bag].max() - 1e-3)
+    gap = zplate - (g["z"][top] + g["radius"][top])
+    return float(np.mean(gap > gap_mm / 1000)), float(gap.max() * 1000), int(top.sum())
+
+
+def edge_forces(run, band=0.010):
+    """mean normal force of contacts in the central y cross-section: near the sides, in the middle."""
+    gpath, step = last_dump(run, "grains")
+    g = read_dump(gpath)
+    c = read_dump(Path(run) / ("dump.contacts.%d" % step))
+    pos = {int(i): (x, y) for i, x, y in zip(g["id"], g["x"], g["y"])}
+    mid = np.array([[(pos[int(a)][k] + pos[int(b)][k]) / 2 for k in (0, 1)] for a, b in zip(c["id1"], c["id2"])])
+    bag = g["type"] == 1
+    xlo, xhi = g["x"][bag].min(), g["x"][bag].max()
+    yc = 0.5 * (g["y"][bag].min() + g["y"][bag].max())
+    xc, half = 0.5 * (xlo + xhi), 0.5 * (xhi - xlo)
+    section = np.abs(mid[:, 1] - yc) < band
+    edge = section & (np.abs(mid[:, 0] - xc) > half - band)
+    centre = section & (np.abs(mid[:, 0] - xc) < half / 2)
+    return float(c["fn"][edge].mean()), float(c["fn"][centre].mean()), int(edge.sum()), int(centre.sum())
+
+
+def check_trends(root):
+    root = Path(root)
+    runs = {f: root / ("F%d" % f) for f in LOADS}
+    data = {f: read_csv(r) for f, r in runs.items()}
+    results = []
+    peak = {f: float(d["S_N"].max()) for f, d in data.items()}
+    print("load (paper kN) | F_v here (N) | peak S (N) | u at peak (mm) | contraction (mm) | u at w_min (mm) | dilatancy (mm)")
+    wp = {}
+    for f, d in data.items():
+        wp[f] = w_path(d)
+        print("%15.2f | %12.1f | %10.1f | %14.2f | %16.4f | %15.2f | %14.4f"
+              % (f / 1000, np.median(d["Fv_N"]), peak[f], d["u_mm"][np.argmax(d["S_N"])], wp[f][0], wp[f][2], wp[f][1]))
+    results.append(("1. peak S rises with F_v", peak[5500] > peak[3730] > peak[1960]))
+    results.append(("2. w contracts, then dilates (every load)",
+                    all(c > 0 and dl > 0.01 * c for c, dl, _ in wp.values())))
+    results.append(("3a. more contraction at higher F_v", wp[5500][0] > wp[3730][0] > wp[1960][0]))
+    results.append(("3b. less dilatancy at higher F_v", wp[5500][1] < wp[3730][1] < wp[1960][1]))
+    frac, gmax, ntop = detachment(runs[5500])
+    print("top face at the last dump (5.50 kN): %.0f %% of %d particles more than 0.5 mm below the plate, largest gap %.2f mm"
+          % (100 * frac, ntop, gmax))
+    results.append(("4. the top surface detaches from the top plate", frac > 0))
+    fe, fc, ne, nc = edge_forces(runs[5500])
+    print("central cross-section (5.50 kN, last dump): mean normal force %.3f N near the sides (%d contacts), "
+          "%.3f N in the central half (%d contacts), ratio %.2f" % (fe, ne, fc, nc, fe / fc))
+    results.append(("5. contact forces larger near the edges", fe > fc))
+    return results
+
+
+def check_speed(run_a, run_b, tol):
+    a, b = read_csv(run_a), read_csv(run_b)
+    hi = min(a["u_mm"].max(), b["u_mm"].max())
+    u = np.linspace(0.5, hi, 50)
+    sa, sb = np.interp(u, a["u_mm"], a["S_N"]), np.interp(u, b["u_mm"], b["S_N"])
+    scale = max(sa.max(), sb.max())
+    rms, mx = float(np.sqrt(np.mean((sa - sb) ** 2)) / scale), float(np.abs(sa - sb).max() / scale)
+    print("S-u of %s and %s over u = 0.5..%.2f mm: rms difference %.1f %%, max %.1f %% of peak S %.1f N (tolerance %.0f %%)"
+          % (run_a, run_b, hi, 100 * rms, 100 * mx, scale, 100 * tol))
+    return [("S-u independent of the shear speed (rms)", rms <= tol),
+            ("S-u independent of the shear speed (max, 2 x tolerance)", mx <= 2 * tol)]
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("dirs", nargs="+")
+    ap.add_argument("--speed", action="store_true", help="compare two runs at different shear speeds")
+    ap.add_argument("--tol", type=float, default=0.1)
+    a = ap.parse_args(argv)
+    if a.speed:
+        if len(a.dirs) != 2:
+            raise SystemExit("check_trends: --speed needs two run directories")
+        results = check_speed(a.dirs[0], a.dirs[1], a.tol)
+    else:
+        if len(a.dirs) != 1:
+            raise SystemExit("check_trends: give one trends directory (with F5500/, F3730/, F1960/)")
+        results = check_trends(a.dirs[0])
+    for name, ok in results:
+        print("%-4s %s" % ("PASS" if ok else "FAIL", name))
+    return 0 if all(ok for _, ok in results) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

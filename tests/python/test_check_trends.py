@@ -1,0 +1,106 @@
+"""inputs/check_trends.py on synthetic runs: passes when the paper's trends are there, fails the
+right check when one is missing, and compares two speeds' S-u curves."""
+import importlib.util
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
+spec = importlib.util.spec_from_file_location("check_trends", ROOT / "inputs" / "check_trends.py")
+ct = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(ct)
+
+DT, STEP = 2e-6, 5000
+U = np.linspace(0, 7, 71)
+
+
+def write_csv(run, smax, contraction, dilation, speed=1.0):
+    """S rises to smax; w falls by `contraction` by u = 2 mm then rises by `dilation`."""
+    w = np.where(U < 2, -contraction * U / 2, -contraction + dilation * (U - 2) / 5)
+    s = smax * (1 - np.exp(-U / 0.8 * speed))
+    t = U / 1000 / 0.01
+    z = 40 + w
+    rows = ["%g,%g,%g,%g,%g,0,%g" % r for r in zip(t, U, w - 1.0, s, np.full_like(U, 300), z)]
+    (run / "shear.csv").write_text("time_s,u_mm,w_mm,S_N,Fv_N,broken_bonds,zplate_mm\n# comment\n" + "\n".join(rows))
+
+
+def write_dumps(run, gap_mm, edge_force, centre_force):
+    """a top face of 4 bag particles (one with the gap), two sand grains in the middle row and two
+    contacts: one at the side, one in the centre."""
+    t = STEP * DT
+    d = np.genfromtxt(run / "shear.csv", delimiter=",", names=True)
+    zplate = np.interp(t, d["time_s"], d["zplate_mm"]) / 1000
+    r = 0.0025
+    atoms = [  # id type radius x y z dx dy dz
+        (1, 1, r, 0.0, 0.05, zplate - r, 0, 0, 0),
+        (2, 1, r, 0.1, 0.05, zplate - r - gap_mm / 1000, 0, 0, -gap_mm / 1000),
+        (3, 1, r, 0.0, 0.0, 0.0, 0, 0, 0),
+        (4, 1, r, 0.1, 0.1, 0.0, 0, 0, 0),
+        (5, 2, 0.002, 0.004, 0.05, 0.02, 0, 0, 0),
+        (6, 2, 0.002, 0.05, 0.05, 0.02, 0, 0, 0),
+        (7, 2, 0.002, 0.054, 0.05, 0.02, 0, 0, 0),
+    ]
+    head = "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF %s\n%d\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\n"
+    (run / ("dump.grains.%d" % STEP)).write_text(
+        head % (STEP, "ATOMS", len(atoms)) + "ITEM: ATOMS id type radius x y z dx dy dz\n"
+        + "\n".join(" ".join(str(v) for v in a) for a in atoms) + "\n")
+    contacts = [(1, 1, 5, 1, 2, 0.004, 0, 0, 0, edge_force, 1e-5), (2, 6, 7, 2, 2, 0.004, 0, 0, 0, centre_force, 1e-5)]
+    (run / ("dump.contacts.%d" % STEP)).write_text(
+        head % (STEP, "ENTRIES", len(contacts)) + "ITEM: ENTRIES index id1 id2 type1 type2 dist ftx fty ftz fn overlap\n"
+        + "\n".join(" ".join(str(v) for v in c) for c in contacts) + "\n")
+    (run / "log.shear").write_text("TIMESTEP: Rayleigh 1.1e-05 s, bond 7.8e-06 s; using %g s\n" % DT)
+
+
+def make_trends(tmp_path, peaks=(900, 700, 400), contraction=(0.3, 0.2, 0.1), dilation=(0.1, 0.2, 0.3),
+                gap_mm=1.0, edge=(5.0, 1.0)):
+    for f, s, c, dl in zip(ct.LOADS, peaks, contraction, dilation):
+        run = tmp_path / ("F%d" % f)
+        run.mkdir()
+        write_csv(run, s, c, dl)
+        write_dumps(run, gap_mm, *edge)
+    return tmp_path
+
+
+def failed(results):
+    return [name for name, ok in results if not ok]
+
+
+def test_all_trends_pass(tmp_path, capsys):
+    assert failed(ct.check_trends(make_trends(tmp_path))) == []
+    out = capsys.readouterr().out
+    assert "peak S" in out and "ratio 5.00" in out
+
+
+@pytest.mark.parametrize("kw,which", [
+    (dict(peaks=(700, 900, 400)), "1."),
+    (dict(dilation=(0.001, 0.2, 0.3)), "2."),
+    (dict(contraction=(0.1, 0.2, 0.3)), "3a."),
+    (dict(dilation=(0.3, 0.2, 0.1)), "3b."),
+    (dict(gap_mm=0.2), "4."),
+    (dict(edge=(1.0, 5.0)), "5."),
+])
+def test_each_check_can_fail(tmp_path, kw, which):
+    names = failed(ct.check_trends(make_trends(tmp_path, **kw)))
+    assert names and all(n.startswith(which) for n in names), names
+
+
+def test_speed_check(tmp_path):
+    a, b, c = (tmp_path / n for n in "abc")
+    for run, speed in ((a, 1.0), (b, 1.05), (c, 3.0)):
+        run.mkdir()
+        write_csv(run, 500, 0.1, 0.1, speed=speed)
+    assert failed(ct.check_speed(a, b, 0.1)) == []
+    assert failed(ct.check_speed(a, c, 0.1))
+
+
+def test_missing_and_truncated(tmp_path):
+    with pytest.raises(SystemExit, match="no .*shear.csv"):
+        ct.check_trends(tmp_path)
+    (tmp_path / "t").mkdir()
+    run = make_trends(tmp_path / "t")
+    dump = run / "F5500" / ("dump.grains.%d" % STEP)
+    dump.write_text(dump.read_text().rsplit("\n", 3)[0] + "\n")
+    with pytest.raises(SystemExit, match="truncated"):
+        ct.check_trends(run)
