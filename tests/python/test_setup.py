@@ -77,3 +77,15 @@ def test_launcher_runs_a_deck_with_the_plugin(tmp_path):
     r = run([str(ROOT / "tbags"), "run", str(deck), "-np", "2"], env=dict(os.environ, TBAGS_BUILD_DIR=str(BUILD)))
     grid = re.search(r"(\d+) by (\d+) by (\d+) MPI processor grid", r.stdout)
     assert r.returncode == 0 and grid and eval("*".join(grid.groups())) == 2
+
+
+def test_launcher_shear_presets_and_bad_arguments():
+    """Unknown presets and bad -np stop before any set-up, with a message naming the choices."""
+    r = run([str(ROOT / "tbags"), "shear", "papr"])
+    assert r.returncode != 0 and "unknown preset 'papr'" in r.stderr and "trends" in r.stderr
+    r = run([str(ROOT / "tbags"), "shear", "demo", "-np", "zero"])
+    assert r.returncode != 0 and "-np needs a positive number" in r.stderr
+    r = run([str(ROOT / "tbags"), "shear", "trends", "--estimate"])
+    assert r.returncode != 0 and "--estimate is for the paper preset" in r.stderr
+    r = run([str(ROOT / "tbags"), "shear", "--help"])
+    assert r.returncode == 0 and all(p in r.stdout for p in ("demo", "trends", "quasistatic", "paper"))
