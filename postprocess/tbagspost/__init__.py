@@ -1,0 +1,21 @@
+"""tbagspost: figures and ParaView files from T-BAGS shear runs (inputs/in.shear).
+
+Modules, one job each:
+  dumps     readers of one dump file (grains through MDAnalysis, contacts and bonds), checks
+  run       a run directory: CSV, time step, dump steps, u at a dump step
+  progress  a plain progress bar on stderr
+  style     the paper style of the figures, saving
+  shear     S-u and w-u figures (one run, several runs overlaid)
+  shape     deformed shape of the bag (side view and two central cross-sections)
+  network   contact-force network and bond tension in the central cross-section
+  vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
+  cli       the command line (python3 -m tbagspost --help)
+Every reader stops with a one-line SystemExit message naming the file on a missing, truncated
+or malformed input (no traceback).
+"""
+__version__ = "1.0"
+
+
+def fail(message):
+    """Stop with a one-line message (SystemExit): for a user error, not a bug."""
+    raise SystemExit("tbagspost: " + message)

@@ -1,0 +1,6 @@
+"""python3 -m tbagspost: see tbagspost.cli."""
+import sys
+
+from tbagspost.cli import main
+
+sys.exit(main())

@@ -1,0 +1,151 @@
+"""Contact-force network and bond tension in the central x-z cross-section at one dump step (the
+paper's Part 2: contact forces small and uniform in the centre, larger near the edges where the
+bag's tension pushes on the sand).
+
+(a) contacts whose midpoint lies in the band around the bag's mid-plane in y, as lines between
+    the particle centres (projected on x-z), width and colour by the normal force: sand-sand in
+    blues, bag-sand in reds (bag-bag contacts, inside the fabric, are left out);
+(b) bag bonds in the same section, width and colour by tension (slack bonds thin grey);
+(c) mean normal force against x in the section (bins of s = 5 mm), sand-sand and bag-sand.
+Edge vs centre (stats): sand-sand contacts whose midpoint is within 2 s (10 mm) of the bag's
+lateral boundary in plan (its current x and y extent) are "edge", the rest "centre"; the means are
+over the whole bag and over the section.
+"""
+import numpy as np
+from matplotlib import cm, colors
+from matplotlib.collections import LineCollection
+
+from tbagspost import section, style
+
+EDGE = 2 * section.S
+KINDS = {"sand-sand": (2, 2), "bag-sand": (1, 2), "bag-bag": (1, 1)}
+LW_MAX = 3.0
+
+
+def contact_kind(c):
+    """Array of 'sand-sand', 'bag-sand', 'bag-bag' per contact."""
+    lo, hi = np.minimum(c["type1"], c["type2"]), np.maximum(c["type1"], c["type2"])
+    kind = np.full(len(lo), "bag-bag", dtype=object)
+    kind[(lo == 1) & (hi == 2)] = "bag-sand"
+    kind[(lo == 2) & (hi == 2)] = "sand-sand"
+    return kind
+
+
+def ends(g, a, b):
+    """Positions (n, 2, 3) of the two atoms of each contact or bond (ids a, b)."""
+    return np.stack([g.pos[g.index(a)], g.pos[g.index(b)]], axis=1)
+
+
+def edge_mask(g, mid):
+    """Midpoints (n, 3) within EDGE of the bag's lateral boundary in plan."""
+    p = g.pos[g.bag]
+    lo, hi = p[:, :2].min(axis=0), p[:, :2].max(axis=0)
+    dist = np.minimum(mid[:, :2] - lo, hi - mid[:, :2]).min(axis=1)
+    return dist < EDGE
+
+
+def _lines(ax, seg, value, norm, cmap):
+    """Segments (n, 2, 3) drawn on x-z (mm), width and colour by value."""
+    lw = 0.3 + (LW_MAX - 0.3) * np.clip(value / norm.vmax, 0, 1)
+    col = LineCollection(seg[:, :, [0, 2]] * 1000, linewidths=lw, cmap=cmap, norm=norm,
+                         capstyle="round")
+    col.set_array(value)
+    ax.add_collection(col)
+    return col
+
+
+def _mean(value, mask):
+    return float(value[mask].mean()) if mask.any() else float("nan")
+
+
+def figure(run, step, half_band=None):
+    """Figure of the contact network and bond tension at a dump step; returns (Figure, stats)."""
+    g = run.grains(step)
+    c = run.contacts(step)
+    b = run.bonds(step)
+    u = run.at_step(step)
+    z_top = section.top_plate_z(run, step)
+    half = half_band or section.default_half_band(g)
+    yc = section.mid_y(g)
+
+    seg = ends(g, c["id1"], c["id2"])
+    mid = seg.mean(axis=1)
+    kind = contact_kind(c)
+    fn = c["fn"]
+    in_sec = np.abs(mid[:, 1] - yc) <= half
+    bseg = ends(g, b["id1"], b["id2"])
+    b_sec = (np.abs(bseg[:, :, 1] - yc) <= section.S / 2).all(axis=1)
+
+    fig = style.figure(1, 1, width=7.0, height=8.0)[0]
+    fig.delaxes(fig.axes[0])
+    grid = fig.add_gridspec(3, 4, hspace=0.45, wspace=0.08, height_ratios=[1.2, 1.2, 1],
+                            width_ratios=[1, 0.025, 0.1, 0.025])
+    a_net, a_bond, a_prof = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[2, 0])
+    caxes = [fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[0, 3]), fig.add_subplot(grid[1, 1])]
+    xlo, xhi = g.pos[g.bag, 0].min(), g.pos[g.bag, 0].max()
+    zmax = z_top if z_top is not None else float((g.pos[:, 2] + g.radius).max())
+    shown = in_sec & (kind != "bag-bag")
+    fmax = max(float(fn[shown].max()) if shown.any() else 0.0, 1e-12)
+    norm = colors.Normalize(0, fmax)
+    bars = []
+    for name, cmap in (("sand-sand", "Blues"), ("bag-sand", "Reds")):
+        sel = in_sec & (kind == name)
+        cmap = colors.LinearSegmentedColormap.from_list(name, cm.get_cmap(cmap)(np.linspace(0.3, 1, 64)))
+        _lines(a_net, seg[sel], np.clip(fn[sel], 0, None), norm, cmap)
+        bars.append((cm.ScalarMappable(norm=norm, cmap=cmap), "%s $f_n$ (N)" % name))
+    sec_bag = section.in_xz(g, half) & g.bag
+    a_net.plot(g.pos[sec_bag, 0] * 1000, g.pos[sec_bag, 2] * 1000, "o", color="0.6", ms=1.2, zorder=0)
+    a_net.set_title("contact forces, central x-z section $\\pm$%.1f mm ($u$ = %.2f mm)" % (half * 1000, u))
+
+    tension = b["tension"]
+    bnorm = colors.Normalize(0, max(float(tension[b_sec].max()) if b_sec.any() else 0.0, 1e-12))
+    slack = b_sec & (tension <= 0)
+    a_bond.add_collection(LineCollection(bseg[slack][:, :, [0, 2]] * 1000, colors="0.7", linewidths=0.4))
+    _lines(a_bond, bseg[b_sec & ~slack], tension[b_sec & ~slack], bnorm, cm.plasma)
+    bars.append((cm.ScalarMappable(norm=bnorm, cmap=cm.plasma), "bond tension (N)"))
+    a_bond.set_title("bond tension along the bag, central x-z section (slack bonds grey)")
+    for ax in (a_net, a_bond):
+        section.frame(ax, "$x$ (mm)", xlo, xhi, zmax)
+        section.plates(ax, xlo, xhi, z_top)
+    for (sm, label), cax in zip(bars, caxes):
+        bar = fig.colorbar(sm, cax=cax)
+        bar.set_label(label, fontsize=7)
+        bar.ax.tick_params(labelsize=7)
+
+    edges = np.arange(xlo, xhi + section.S, section.S)
+    centres = 0.5 * (edges[1:] + edges[:-1]) * 1000
+    for name, color in (("sand-sand", "tab:blue"), ("bag-sand", "tab:red")):
+        sel = in_sec & (kind == name)
+        k = np.digitize(mid[sel, 0], edges) - 1
+        ok = (k >= 0) & (k < len(centres))
+        total = np.bincount(k[ok], weights=fn[sel][ok], minlength=len(centres))
+        count = np.bincount(k[ok], minlength=len(centres))
+        mean = np.where(count > 0, total / np.maximum(count, 1), np.nan)
+        a_prof.plot(centres, mean, "o-", color=color, ms=3, label=name)
+    a_prof.set_xlabel("$x$ (mm)")
+    a_prof.set_ylabel("mean $f_n$ in the section (N)")
+    a_prof.set_xlim(a_net.get_xlim())
+    a_prof.legend(frameon=False)
+    for ax, tag in zip((a_net, a_bond, a_prof), "abc"):
+        style.panel_label(ax, "(%s)" % tag)
+
+    ss = kind == "sand-sand"
+    edge = edge_mask(g, mid)
+    stats = dict(run=run.name, step=step, u_mm=u, n_contacts=len(fn), n_section=int(shown.sum()),
+                 fn_max_N=float(fn.max()) if len(fn) else 0.0,
+                 fn_edge_N=_mean(fn, ss & edge), fn_centre_N=_mean(fn, ss & ~edge),
+                 fn_edge_sec_N=_mean(fn, ss & edge & in_sec), fn_centre_sec_N=_mean(fn, ss & ~edge & in_sec),
+                 fn_bag_sand_N=_mean(fn, kind == "bag-sand"),
+                 tension_max_N=float(tension.max()) if len(tension) else 0.0,
+                 tension_mean_N=_mean(tension, tension > 0), slack=float((tension <= 0).mean()) if len(tension) else 0.0)
+    return fig, stats
+
+
+def describe(st):
+    """One line of numbers for a network figure."""
+    return ("%s u = %.2f mm: %d contacts (%d shown in the section), largest f_n %.2f N; sand-sand mean "
+            "f_n near the edges %.3f N vs centre %.3f N (section: %.3f vs %.3f N), bag-sand mean %.3f N; "
+            "bond tension max %.2f N, mean of taut bonds %.3f N, %.0f %% of bonds slack"
+            % (st["run"], st["u_mm"], st["n_contacts"], st["n_section"], st["fn_max_N"], st["fn_edge_N"],
+               st["fn_centre_N"], st["fn_edge_sec_N"], st["fn_centre_sec_N"], st["fn_bag_sand_N"],
+               st["tension_max_N"], st["tension_mean_N"], 100 * st["slack"]))

@@ -1,0 +1,124 @@
+"""One shear run directory (written by inputs/in.shear): the CSV, the time step, the dump steps
+and the shear displacement u of each dump step.
+
+u at a dump step: LAMMPS time is step * dt (dt is constant through in.shear and a resumed run
+keeps step and time), so the dump step is put on the CSV's time axis and u (and w, S, the top
+plate position) is interpolated linearly between the CSV rows (every 0.1 mm of u). dt is read
+from the log line "TIMESTEP: ... using DT s" that in.shear prints (log.* or screen.*.txt), or
+given with --dt. This holds for dumps written at any step, also after a restart.
+"""
+import re
+from pathlib import Path
+
+import numpy as np
+
+from tbagspost import dumps, fail
+
+CSV_COLUMNS = ("time_s", "u_mm", "w_mm", "S_N", "Fv_N")
+KINDS = ("grains", "contacts", "bonds")
+DT_LINE = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
+
+
+def read_csv(path):
+    """The shear CSV as a numpy structured array; stops clearly if missing or truncated."""
+    path = Path(path)
+    if not path.is_file():
+        fail("no %s (run inputs/in.shear first)" % path)
+    try:
+        data = np.genfromtxt(path, delimiter=",", names=True, comments="#")
+    except ValueError as e:
+        fail("%s is malformed or truncated: %s" % (path, str(e).splitlines()[0]))
+    if data.dtype.names is None or not set(CSV_COLUMNS) <= set(data.dtype.names):
+        fail("%s lacks the columns %s" % (path, ", ".join(CSV_COLUMNS)))
+    data = np.atleast_1d(data)
+    if len(data) < 2:
+        fail("%s has fewer than two rows (truncated run?)" % path)
+    if np.isnan(data[-1]["S_N"]):
+        fail("%s: its last row is cut (truncated run?)" % path)
+    return data
+
+
+class Run:
+    """A shear run directory: lazy CSV, dt, dump steps; u and plate position at a step."""
+
+    def __init__(self, path, dt=None):
+        self.path = Path(path)
+        if not self.path.is_dir():
+            fail("no run directory %s" % self.path)
+        self._dt = dt
+        self._csv = None
+
+    @property
+    def name(self):
+        return self.path.resolve().name
+
+    @property
+    def csv(self):
+        if self._csv is None:
+            self._csv = read_csv(self.path / "shear.csv")
+        return self._csv
+
+    @property
+    def fv_kN(self):
+        """The vertical force held while shearing (median of the CSV), kN."""
+        return float(np.median(self.csv["Fv_N"])) / 1000
+
+    @property
+    def label(self):
+        return "$F_v$ = %.2f kN" % self.fv_kN
+
+    @property
+    def dt(self):
+        """Time step (s): --dt, else the TIMESTEP line of the run's log."""
+        if self._dt is None:
+            logs = sorted(self.path.glob("log.*")) + sorted(self.path.glob("screen.*"))
+            for log in logs:
+                m = DT_LINE.search(log.read_text(errors="replace"))
+                if m:
+                    self._dt = float(m.group(1))
+                    break
+            else:
+                fail("%s: no 'TIMESTEP: ... using DT s' line in its log.* or screen.* files; "
+                     "give the time step with --dt" % self.path)
+        return self._dt
+
+    def steps(self, kind="grains"):
+        """Sorted steps of the dumps dump.<kind>.<step>."""
+        steps = []
+        for p in self.path.glob("dump.%s.*" % kind):
+            tail = p.name.rsplit(".", 1)[1]
+            if tail.isdigit():
+                steps.append(int(tail))
+        return sorted(steps)
+
+    def dump(self, kind, step):
+        return self.path / ("dump.%s.%d" % (kind, step))
+
+    def at_step(self, step, column="u_mm"):
+        """A CSV column interpolated at a dump step (time = step * dt); stops if the step lies
+        more than one CSV interval outside the CSV's time range."""
+        t, y = self.csv["time_s"], self.csv[column]
+        time = step * self.dt
+        gap = np.median(np.diff(t))
+        if time < t[0] - gap or time > t[-1] + gap:
+            fail("%s: step %d (t = %.6g s with dt = %g s) is outside shear.csv's times "
+                 "%.6g-%.6g s (wrong --dt?)" % (self.path, step, time, self.dt, t[0], t[-1]))
+        k = np.clip(np.searchsorted(t, time), 1, len(t) - 1)
+        return float(y[k - 1] + (y[k] - y[k - 1]) * (time - t[k - 1]) / (t[k] - t[k - 1]))
+
+    def step_near(self, u_mm, kind="grains"):
+        """The dump step whose u is closest to u_mm; stops if there is no dump."""
+        steps = self.steps(kind)
+        if not steps:
+            fail("%s: no dump.%s.* files" % (self.path, kind))
+        us = np.array([self.at_step(s) for s in steps])
+        return steps[int(np.argmin(np.abs(us - u_mm)))]
+
+    def grains(self, step):
+        return dumps.read_grains(self.dump("grains", step))
+
+    def contacts(self, step):
+        return dumps.read_contacts(self.dump("contacts", step))
+
+    def bonds(self, step):
+        return dumps.read_bonds(self.dump("bonds", step))

@@ -1,0 +1,46 @@
+"""S-u and w-u of shear runs (the paper's Part 2, Fig. 3): shear force S in kN and vertical
+displacement w in mm against the horizontal displacement u in mm, one curve per run, labelled
+with its F_v. w is counted from the start of shearing (w < 0: contraction, the top plate moved
+down; > 0: dilatancy)."""
+import numpy as np
+
+from tbagspost import style
+
+
+def figure(runs, title=None):
+    """Figure with S-u (left) and w-u (right) of the runs (tbagspost.run.Run); returns
+    (Figure, stats) where stats has per run: peak S (kN) and its u, F_v, min and final w."""
+    fig, (a_s, a_w) = style.figure(1, 2, width=7.0, height=2.8)
+    stats = []
+    for run in runs:
+        d = run.csv
+        u, s, w = d["u_mm"], d["S_N"] / 1000, d["w_mm"] - d["w_mm"][0]
+        a_s.plot(u, s, label=run.label)
+        a_w.plot(u, w, label=run.label)
+        k = int(np.argmax(s))
+        drops = np.diff(s)
+        stats.append(dict(run=run.name, Fv_kN=run.fv_kN, S_peak_kN=float(s[k]), u_peak_mm=float(u[k]),
+                          u_final_mm=float(u[-1]), S_final_kN=float(s[-1]), w_min_mm=float(w.min()),
+                          w_final_mm=float(w[-1]), largest_drop_kN=float(max(0.0, -drops.min()))))
+    a_s.set_xlabel("horizontal displacement $u$ (mm)")
+    a_s.set_ylabel("shear force $S$ (kN)")
+    a_w.set_xlabel("horizontal displacement $u$ (mm)")
+    a_w.set_ylabel("vertical displacement $w$ (mm)")
+    a_w.axhline(0, color="0.5", lw=0.6)
+    for ax, tag in ((a_s, "(a)"), (a_w, "(b)")):
+        ax.set_xlim(left=0)
+        ax.legend(loc="lower right" if ax is a_s else "best", frameon=False)
+        style.panel_label(ax, tag)
+    a_s.set_ylim(bottom=min(0.0, a_s.get_ylim()[0]))
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig, stats
+
+
+def describe(st):
+    """One line of numbers for a run's S-u and w-u."""
+    return ("%s: F_v %.2f kN; peak S %.3f kN at u %.2f mm, S %.3f kN at u %.2f mm; w min %.3f mm, "
+            "final %.3f mm (from the start of shear); largest drop of S %.3f kN"
+            % (st["run"], st["Fv_kN"], st["S_peak_kN"], st["u_peak_mm"], st["S_final_kN"],
+               st["u_final_mm"], st["w_min_mm"], st["w_final_mm"], st["largest_drop_kN"]))
