@@ -12,6 +12,7 @@ lateral boundary in plan (its current x and y extent) are "edge", the rest "cent
 over the whole bag and over the section.
 """
 import numpy as np
+import matplotlib
 from matplotlib import cm, colors
 from matplotlib.collections import LineCollection
 
@@ -90,7 +91,7 @@ def figure(run, step, half_band=None):
     bars = []
     for name, cmap in (("sand-sand", "Blues"), ("bag-sand", "Reds")):
         sel = in_sec & (kind == name)
-        cmap = colors.LinearSegmentedColormap.from_list(name, cm.get_cmap(cmap)(np.linspace(0.3, 1, 64)))
+        cmap = colors.LinearSegmentedColormap.from_list(name, matplotlib.colormaps[cmap](np.linspace(0.3, 1, 64)))
         _lines(a_net, seg[sel], np.clip(fn[sel], 0, None), norm, cmap)
         bars.append((cm.ScalarMappable(norm=norm, cmap=cmap), "%s $f_n$ (N)" % name))
     sec_bag = section.in_xz(g, half) & g.bag
@@ -108,6 +109,7 @@ def figure(run, step, half_band=None):
         section.frame(ax, "$x$ (mm)", xlo, xhi, zmax)
         section.plates(ax, xlo, xhi, z_top)
     for (sm, label), cax in zip(bars, caxes):
+        cax.grid(False)
         bar = fig.colorbar(sm, cax=cax)
         bar.set_label(label, fontsize=7)
         bar.ax.tick_params(labelsize=7)
