@@ -43,7 +43,7 @@ def read_header(path):
     try:
         if not (lines[0].startswith("ITEM: TIMESTEP") and lines[2].startswith("ITEM: NUMBER OF")
                 and lines[4].startswith("ITEM: BOX BOUNDS")
-                and lines[8].startswith(("ITEM: ATOMS", "ITEM: ENTRIES"))):
+                and lines[8].startswith(("ITEM: ATOMS", "ITEM: ENTRIES")) and lines[8].endswith("\n")):
             raise ValueError
         box = np.array([[float(v) for v in lines[k].split()[:2]] for k in (5, 6, 7)])
         return Header(int(lines[1]), int(lines[3]), box[:, 0], box[:, 1], lines[8].split()[2:])

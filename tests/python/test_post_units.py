@@ -1,0 +1,135 @@
+"""tbagspost pieces on hand-made inputs (no LAMMPS): u at a dump step from the CSV and the log's
+time step, dump readers against known values (box origin, id order, empty dumps), clear one-line
+errors for truncated, cut, foreign and missing files, the progress bar, command-line checks."""
+import io
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost import cli, dumps  # noqa: E402
+from tbagspost.progress import Progress  # noqa: E402
+from tbagspost.run import Run  # noqa: E402
+
+BOX = "ITEM: BOX BOUNDS ff ff ff\n-0.02 0.06\n-0.03 0.06\n-0.01 0.065\n"
+# id type radius x y z vx vy vz dx dy dz, not in id order (LAMMPS writes in rank order)
+ATOMS = np.array([[3, 2, 0.003, 0.011, 0.012, 0.013, 0.1, 0.2, 0.3, 1e-3, 2e-3, 3e-3],
+                  [1, 1, 0.0025, 0.0, -0.001, 0.0001, -0.1, 0.0, 0.05, 4e-4, -5e-4, 6e-4],
+                  [2, 1, 0.0025, 0.005, 0.0, 0.0, 0.0, 0.01, 0.0, 0.0, 0.0, -1e-4]])
+
+
+def grains_text(rows=ATOMS, count=None):
+    head = "ITEM: TIMESTEP\n1500\nITEM: NUMBER OF ATOMS\n%d\n" % (len(rows) if count is None else count)
+    body = "".join(" ".join("%.10g" % v for v in r) + "\n" for r in rows)
+    return head + BOX + "ITEM: ATOMS " + " ".join(dumps.GRAIN_COLUMNS) + "\n" + body
+
+
+def local_text(rows, columns, step=1500):
+    head = "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF ENTRIES\n%d\n" % (step, len(rows))
+    body = "".join(" ".join("%.10g" % v for v in r) + " \n" for r in rows)
+    return head + BOX + "ITEM: ENTRIES " + " ".join(columns) + "\n" + body
+
+
+@pytest.fixture
+def rundir(tmp_path):
+    rows = ["time_s,u_mm,w_mm,S_N,Fv_N,broken_bonds,zplate_mm", "# comment"]
+    rows += ["%.6f,%.4f,%.4f,%.4f,100,0,%.4f" % (0.002 + 0.001 * k, 0.1 * k, -0.01 * k, 10.0 * k, 30 - 0.01 * k)
+             for k in range(11)]
+    (tmp_path / "shear.csv").write_text("\n".join(rows) + "\n")
+    (tmp_path / "log.shear").write_text("something\nTIMESTEP: Rayleigh 1.1e-05 s, bond 7.7e-06 s; using 2e-6 s\n")
+    return tmp_path
+
+
+def test_u_at_a_step_interpolates_the_csv(rundir):
+    run = Run(rundir)
+    assert run.dt == 2e-6
+    assert run.at_step(1000) == pytest.approx(0.0)             # t = 0.002 s: first row
+    assert run.at_step(1250) == pytest.approx(0.05)            # t = 0.0025 s: halfway, rows 0 and 1
+    assert run.at_step(3250, "S_N") == pytest.approx(45.0)     # t = 0.0065 s
+    assert run.at_step(3250, "zplate_mm") == pytest.approx(30 - 0.045)
+    with pytest.raises(SystemExit, match="outside shear.csv's times"):
+        run.at_step(100000)
+    assert Run(rundir, dt=1e-6).at_step(3000) == pytest.approx(0.1)   # --dt wins over the log
+    (rundir / "log.shear").unlink()
+    with pytest.raises(SystemExit, match="--dt"):
+        Run(rundir).dt
+
+
+def test_grains_reader_keeps_the_box_origin_and_sorts_by_id(tmp_path):
+    path = tmp_path / "dump.grains.1500"
+    path.write_text(grains_text())
+    g = dumps.read_grains(path)
+    ref = ATOMS[np.argsort(ATOMS[:, 0])]
+    assert g.step == 1500 and list(g.ids) == [1, 2, 3] and list(g.types) == [1, 1, 2]
+    assert np.allclose(g.pos, ref[:, 3:6], atol=1e-9)   # MDAnalysis shifts by the box's lower bound
+    assert np.allclose(g.vel, ref[:, 6:9], atol=1e-7) and np.allclose(g.disp, ref[:, 9:12])
+    assert np.array_equal(g.radius, ref[:, 2]) and list(g.bag) == [True, True, False]
+    assert list(g.index([3, 1])) == [2, 0]
+    with pytest.raises(SystemExit, match="missing from the grains dump"):
+        g.index([7])
+
+
+def test_local_readers(tmp_path):
+    path = tmp_path / "dump.bonds.1500"
+    path.write_text(local_text([[1, 1, 2, 1, 0.005, 0.001, 2.5], [2, 2, 3, 1, 0.005, -0.001, 0.0]],
+                               ["index", "id1", "id2", "btype", "dist", "strain", "tension"]))
+    b = dumps.read_bonds(path)
+    assert list(b["id1"]) == [1, 2] and list(b["tension"]) == [2.5, 0.0] and b["step"] == 1500
+    empty = tmp_path / "dump.contacts.1500"
+    empty.write_text(local_text([], ["index", "id1", "id2", "type1", "type2", "dist", "ftx", "fty", "ftz",
+                                     "fn", "overlap"]))
+    c = dumps.read_contacts(empty)
+    assert len(c["fn"]) == 0 and c["id1"].dtype.kind == "i"
+
+
+@pytest.mark.parametrize("make,message", [
+    (lambda: grains_text()[:-40], r"is truncated: 3 of 3 rows, last row cut"),
+    (lambda: grains_text(ATOMS[:2], count=3), r"is truncated: 2 of 3 rows"),
+    (lambda: grains_text()[:120], r"is truncated: 0 of 3 rows|header is truncated"),
+    (lambda: grains_text()[:50], r"header is truncated"),
+    (lambda: "time_s,u_mm\n1,2\n", r"not a LAMMPS dump"),
+    (lambda: grains_text().replace(" dx dy dz", " c_disp[1] c_disp[2] c_disp[3]"), r"lacks the columns dx dy dz"),
+])
+def test_bad_grains_dumps_stop_with_one_line(tmp_path, make, message):
+    path = tmp_path / "dump.grains.1500"
+    path.write_text(make())
+    with pytest.raises(SystemExit, match=message) as e:
+        dumps.read_grains(path)
+    text = str(e.value)
+    assert text.startswith("tbagspost: ") and str(path) in text and "\n" not in text
+
+
+def test_missing_dump_and_run(tmp_path):
+    with pytest.raises(SystemExit, match="no dump .*dump.grains.7"):
+        dumps.read_grains(tmp_path / "dump.grains.7")
+    with pytest.raises(SystemExit, match="no run directory"):
+        Run(tmp_path / "nowhere")
+    with pytest.raises(SystemExit, match="no dump.grains"):
+        Run(tmp_path).step_near(1.0)
+
+
+def test_progress_bar():
+    out = io.StringIO()
+    assert list(Progress(range(3), "VTK", stream=out)) == [0, 1, 2]
+    text = out.getvalue()
+    assert text.count("\n") == 1 and "VTK [" in text and "3/3" in text and "#" * 30 in text
+
+
+def test_command_line_checks(capsys):
+    with pytest.raises(SystemExit) as e:
+        cli.parse(["run", "--only", "shape,bogus"])
+    assert e.value.code == 2 and "bogus" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        cli.parse(["run", "--u", "1,x"])
+    a = cli.parse(["a", "b", "--u", "1,5", "--only", "none", "--vtk"])
+    assert a.u == [1.0, 5.0] and a.only == set() and a.vtk and a.runs == ["a", "b"]
+    with pytest.raises(SystemExit) as e:
+        cli.parse(["--help"])
+    assert e.value.code == 0
+    help_text = capsys.readouterr().out
+    for word in ("shear.png", "shape_u", "network_u", ".pvd", "shear-overlay.png"):
+        assert word in help_text
