@@ -85,6 +85,7 @@ FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
   saturated_steps = 0;
   warn_steps = 100000;
   warned = false;
+  placed = false;
   ncontact = 0.0;
   rolling = law::ROLLING_NONE;
   limit_damping = false;
@@ -310,7 +311,16 @@ void FixWallGranServo::init()
 
 void FixWallGranServo::setup(int vflag)
 {
-  // a plate that starts deep inside particles would launch them: refuse
+  // a plate that starts deep inside particles would launch them: refuse. Checked once, at the
+  // first run after the fix is defined: later runs continue from states the plate produced
+  // itself or that the deck made on purpose (radii grown against the plate, a changed modulus).
+  if (!placed) check_placement();
+  placed = true;
+  post_force(vflag);
+}
+
+void FixWallGranServo::check_placement()
+{
   double worst = 0.0, all = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
@@ -321,7 +331,6 @@ void FixWallGranServo::setup(int vflag)
   if (all > 0.05)
     error->all(FLERR, "{} {}: the plate starts {:.3g} radii inside a particle; place it at least "
                "one radius from the particle centres", STYLE, id, all);
-  post_force(vflag);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -75,6 +75,7 @@ class FixWallGranServo : public Fix {
   int nconv, nconv_count;
   bigint saturated_steps, warn_steps;
   bool warned;
+  bool placed;    // the start-position check ran (first setup after the fix was defined)
 
   double fplate[3];      // force of the particles on the plate (summed over ranks)
   double ncontact;
@@ -84,6 +85,7 @@ class FixWallGranServo : public Fix {
   void set_velocity_from(int, char **, int);
   double normal_force() const { return -sense * fplate[axis]; }
   void update_plate();
+  void check_placement();
 };
 
 }    // namespace LAMMPS_NS

@@ -69,3 +69,28 @@ def test_unreachable_target_warns(tmp_path):
     res = lmprun.run(deck(far, nrun=3000), tmp_path).check()
     warn = [l for l in res.output.splitlines() if "WARNING" in l and "wall/gran/servo" in l]
     assert warn and "raise vmax, start the plate closer, or check the target" in warn[0]
+
+
+# ---- the start-position check belongs to the plate's first run only ----------------------------
+GROW = BASE.replace("PAIR", PAIR).replace("FIX", PLATE.replace("zplane 0.0", "zplane 0.0075")).replace(
+    "run RUN", """run 0
+# radii grown against a plate that is already in place (sample preparation by radius growth)
+set type * diameter 0.0055
+run 10
+print "GROWN $(f_p[3]:%.6g)"
+NEWPLATE
+run 10
+""")
+
+
+def test_radius_growth_against_a_placed_plate_runs(tmp_path):
+    res = lmprun.run(GROW.replace("NEWPLATE", ""), tmp_path).check()
+    fz = float([l for l in res.output.splitlines() if l.startswith("GROWN")][0].split()[1])
+    assert fz < 0.0    # the grown grain pushes on the plate
+
+
+def test_a_new_plate_inside_a_grain_is_still_refused(tmp_path):
+    res = lmprun.run(GROW.replace("NEWPLATE", PLATE.replace("fix p", "fix q").replace("zplane 0.0", "zplane 0.0075")),
+                     tmp_path)
+    assert res.returncode != 0, res.output[-1500:]
+    assert "wall/gran/servo q: the plate starts 0.0909 radii inside a particle" in res.error_line(), res.error_line()
