@@ -1,4 +1,5 @@
-"""tbagspost: figures and ParaView files from T-BAGS shear runs (inputs/in.shear).
+"""tbagspost: figures and ParaView files from T-BAGS shear runs (inputs/in.shear) and
+triaxial runs (calibration/in.triax).
 
 Modules, one job each:
   dumps     readers of one dump file (grains through MDAnalysis, contacts and bonds), checks
@@ -8,6 +9,7 @@ Modules, one job each:
   shear     S-u and w-u figures (one run, several runs overlaid)
   shape     deformed shape of the bag (side view and two central cross-sections)
   network   contact-force network and bond tension in the central cross-section
+  triax     triaxial runs (calibration/in.triax): stress ratio and volumetric strain
   vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
   cli       the command line (python3 -m tbagspost --help)
 Every reader stops with a one-line SystemExit message naming the file on a missing, truncated

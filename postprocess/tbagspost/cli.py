@@ -4,12 +4,14 @@
     PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost RUN_DIR ...
 """
 import argparse
+import os
 from pathlib import Path
 
-from tbagspost import fail, network, shape, shear, style, vtkout
+from tbagspost import fail, network, shape, shear, style, triax, vtkout
 from tbagspost.run import Run
 
-DESCRIPTION = """Figures of the paper (Part 2) and ParaView files from shear runs of inputs/in.shear.
+DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
+triaxial runs (calibration/in.triax).
 
 Writes, for each RUN_DIR, into RUN_DIR/figures (or OUTDIR/<run name> with -o):
   shear.png            S-u and w-u (kN, mm), legend with F_v            (from shear.csv)
@@ -23,6 +25,8 @@ with several RUN_DIRs also shear-overlay.png (all runs' S-u and w-u) into OUTDIR
 runs' common parent folder). With --vtk, RUN_DIR/paraview (or OUTDIR/<run name>/paraview):
 particles_<step>.vtu, contacts_<step>.vtp, bonds_<step>.vtp and particles/contacts/bonds.pvd
 (time value = u in mm).
+A triaxial RUN_DIR (a CSV with eps_a_pct, ... from in.triax, no shear.csv) gets triax.png:
+sigma1/sigma3 and eps_v against eps_a; several of them also triax-overlay.png.
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.
 Shape and network figures are made at the dump nearest to each --u (default: the last dump)."""
 
@@ -54,10 +58,19 @@ def parse(argv=None):
     return args
 
 
-def run_outdir(run, args, several):
+def run_outdir(path, args, several):
+    """Output folder of one run directory."""
+    path = Path(path)
     if args.outdir is None:
-        return run.path / "figures"
-    return Path(args.outdir) / run.name if several else Path(args.outdir)
+        return path / "figures"
+    return Path(args.outdir) / path.resolve().name if several else Path(args.outdir)
+
+
+def overlay_dir(paths, args):
+    """Output folder of the overlays: -o, else the runs' common parent folder / figures."""
+    if args.outdir:
+        return Path(args.outdir)
+    return Path(os.path.commonpath([str(Path(p).resolve().parent) for p in paths])) / "figures"
 
 
 def steps_for(run, u_list, kind):
@@ -72,7 +85,7 @@ def steps_for(run, u_list, kind):
 
 def process(run, args, several):
     """All outputs of one run; returns the summary lines."""
-    out = run_outdir(run, args, several)
+    out = run_outdir(run.path, args, several)
     lines, written = [], []
     half = args.band / 1000 if args.band else None
     if "shear" in args.only:
@@ -94,25 +107,45 @@ def process(run, args, several):
     return lines, written
 
 
+def process_triax(csv, args, several):
+    """The triaxial figure of one run; returns the summary lines and written paths."""
+    out = run_outdir(Path(csv).parent, args, several)
+    fig, st = triax.figure([csv])
+    written = style.save(fig, out / "triax", args.format)
+    lines = ["triaxial: " + triax.describe(st[0])]
+    (out / "summary.txt").write_text("\n".join(lines) + "\n")
+    return lines, written
+
+
+def classify(paths, dt):
+    """Shear runs (tbagspost.run.Run) and triaxial CSVs among the run directories."""
+    shear_runs, triax_csvs = [], []
+    for p in paths:
+        csv = None if (Path(p) / "shear.csv").exists() or not Path(p).is_dir() else triax.find_csv(p)
+        if csv:
+            triax_csvs.append(csv)
+        else:
+            shear_runs.append(Run(p, dt=dt))
+    return shear_runs, triax_csvs
+
+
 def main(argv=None):
     args = parse(argv)
-    runs = [Run(p, dt=args.dt) for p in args.runs]
-    several = len(runs) > 1
-    for run in runs:
-        lines, written = process(run, args, several)
+    shear_runs, triax_csvs = classify(args.runs, args.dt)
+    several = len(args.runs) > 1
+    jobs = [(process, run) for run in shear_runs] + [(process_triax, csv) for csv in triax_csvs]
+    for job, item in jobs:
+        lines, written = job(item, args, several)
         for line in lines:
             print(line)
         for path in written:
             print("wrote %s" % path)
-    if several and "shear" in args.only:
-        out = Path(args.outdir) if args.outdir else Path(*_common(runs)) / "figures"
-        fig, _ = shear.figure(runs)
-        for path in style.save(fig, out / "shear-overlay", args.format):
+    overlays = []
+    if len(shear_runs) > 1 and "shear" in args.only:
+        overlays.append(("shear-overlay", shear.figure(shear_runs)[0], [r.path for r in shear_runs]))
+    if len(triax_csvs) > 1:
+        overlays.append(("triax-overlay", triax.figure(triax_csvs)[0], [Path(c).parent for c in triax_csvs]))
+    for name, fig, paths in overlays:
+        for path in style.save(fig, overlay_dir(paths, args) / name, args.format):
             print("wrote %s" % path)
     return 0
-
-
-def _common(runs):
-    """Parts of the runs' common parent folder."""
-    import os
-    return Path(os.path.commonpath([str(r.path.resolve().parent) for r in runs])).parts

@@ -133,3 +133,32 @@ def test_command_line_checks(capsys):
     help_text = capsys.readouterr().out
     for word in ("shear.png", "shape_u", "network_u", ".pvd", "shear-overlay.png"):
         assert word in help_text
+
+
+def test_triaxial_runs(tmp_path):
+    from tbagspost import triax
+    head = "eps_a_pct,eps_v_pct,q_Pa,ratio,p_Pa,Z,sx_Pa,sy_Pa,sz_Pa,e,sxlo_Pa,sxhi_Pa,sylo_Pa,syhi_Pa\n# triaxial\n"
+    dirs = []
+    for s3 in (2e5, 5e5):
+        d = tmp_path / ("s%d" % s3)
+        d.mkdir()
+        rows = []
+        for k in range(30):
+            ea = 0.5 * k
+            ratio = 1 + 3 * ea / (ea + 2)
+            rows.append("%g,%g,%g,%g,%g,4,%g,%g,%g,0.7,0,0,0,0" % (ea, 0.3 * ea - 0.02 * ea ** 2, (ratio - 1) * s3,
+                                                                  ratio, s3, s3 * 1.001, s3 * 0.999, ratio * s3))
+        (d / "triax.csv").write_text(head + "\n".join(rows) + "\n")
+        dirs.append(d)
+    fig, st = triax.figure([triax.find_csv(d) for d in dirs])
+    a_r, a_v = fig.axes
+    d = np.genfromtxt(dirs[1] / "triax.csv", delimiter=",", names=True, comments="#")
+    assert np.allclose(a_r.get_lines()[1].get_ydata(), d["ratio"]) and np.allclose(a_v.get_lines()[1].get_ydata(), d["eps_v_pct"])
+    assert [t.get_text() for t in a_r.get_legend().get_texts()] == ["$\\sigma_3$ = 200 kPa", "$\\sigma_3$ = 500 kPa"]
+    r = d["ratio"].max()
+    assert st[1]["phi_peak_deg"] == pytest.approx(np.degrees(np.arcsin((r - 1) / (r + 1))))
+    cli.main([str(x) for x in dirs] + ["-o", str(tmp_path / "out")])
+    assert (tmp_path / "out" / "triax-overlay.png").is_file() and (tmp_path / "out" / "s200000" / "triax.png").is_file()
+    (dirs[0] / "triax.csv").write_text(head + "1,2,3")
+    with pytest.raises(SystemExit, match="triax.csv"):
+        triax.read(dirs[0] / "triax.csv")
