@@ -23,6 +23,11 @@
 #include <cmath>
 #include <cstring>
 
+// the batch law is also built for AVX2 and picked at run time (GCC and Clang on x86-64)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__AVX2__)
+#define TBAGS_HAVE_AVX2_CLONE 1
+#endif
+
 using namespace LAMMPS_NS;
 namespace law = tbags::contact;
 
@@ -33,6 +38,11 @@ PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
     maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr)
 {
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  simd_avx2 = __builtin_cpu_supports("avx2");
+#else
+  simd_avx2 = false;
+#endif
   single_enable = 1;
   no_virial_fdotr_compute = 1;
   centroidstressflag = CENTROID_NOTAVAIL;
@@ -280,27 +290,107 @@ double PairGranHertzRolling::init_one(int i, int j)
 
 /* ---------------------------------------------------------------------- */
 
+/* ----------------------------------------------------------------------
+   pass 2: the law over the batch, one contact per SIMD lane (m* as set_contact()).
+   Built twice: for the x86-64 baseline (SSE2, 2 lanes) and for AVX2 (4 lanes, chosen at run
+   time); neither contracts to FMA, so both give the same bits as the scalar law.
+------------------------------------------------------------------------- */
+
+namespace {
+using Batch = PairGranHertzRolling::Batch;
+
+template <int ROLL, bool UPDATE>
+TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip)
+{
+  using tbags::vec::V3;
+#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
+#pragma omp simd
+#endif
+  for (int l = 0; l < n; l++) {
+    const double mi = b.mi[l], mj = b.mj[l];
+    double meff = mi * mj / (mi + mj);
+    meff = b.frz[l] == 1.0 ? mj : meff;
+    meff = b.frz[l] >= 2.0 ? mi : meff;
+    const double radi = b.radi[l], radj = b.radj[l], radsum = b.radsum[l];
+    V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
+    V3 hr{0.0, 0.0, 0.0};
+    if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
+    law::LaneOut o;
+    law::contact_lane<ROLL, UPDATE>(*b.p[l], clip, V3{b.dx[0][l], b.dx[1][l], b.dx[2][l]},
+                                    b.rsq[l], radsum, radi * radj / radsum, meff, radi, radj,
+                                    V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
+                                    V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+                                    V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, false, dt, ht, hr, o);
+    b.h[0][l] = ht.x;
+    b.h[1][l] = ht.y;
+    b.h[2][l] = ht.z;
+    if (ROLL == law::ROLLING_EPSD) {
+      b.h[3][l] = hr.x;
+      b.h[4][l] = hr.y;
+      b.h[5][l] = hr.z;
+    }
+    const double fl = b.factor[l];    // special bonds: exact no-op for 1
+    b.f[0][l] = o.f.x * fl;
+    b.f[1][l] = o.f.y * fl;
+    b.f[2][l] = o.f.z * fl;
+    b.ti[0][l] = o.ti.x * fl;
+    b.ti[1][l] = o.ti.y * fl;
+    b.ti[2][l] = o.ti.z * fl;
+    b.tj[0][l] = o.tj.x * fl;
+    b.tj[1][l] = o.tj.y * fl;
+    b.tj[2][l] = o.tj.z * fl;
+  }
+}
+
+template <int ROLL, bool UPDATE> void law_lanes_base(Batch &b, int n, double dt, bool clip)
+{
+  law_lanes<ROLL, UPDATE>(b, n, dt, clip);
+}
+
+#ifdef TBAGS_HAVE_AVX2_CLONE
+template <int ROLL, bool UPDATE>
+__attribute__((target("avx2"))) void law_lanes_avx2(Batch &b, int n, double dt, bool clip)
+{
+  law_lanes<ROLL, UPDATE>(b, n, dt, clip);
+}
+#endif
+
+template <int ROLL, bool UPDATE> void batch_law(Batch &b, int n, double dt, bool clip, bool avx2)
+{
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  if (avx2) return law_lanes_avx2<ROLL, UPDATE>(b, n, dt, clip);
+#endif
+  law_lanes_base<ROLL, UPDATE>(b, n, dt, clip);
+}
+}    // namespace
+
 void PairGranHertzRolling::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (rolling == law::ROLLING_EPSD) eval<law::ROLLING_EPSD>();
-  else if (rolling == law::ROLLING_CDT) eval<law::ROLLING_CDT>();
-  else eval<law::ROLLING_NONE>();
+  if (!batch) batch.reset(new Batch);
+  const bool upd = update->setupflag == 0;
+  if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true>() : eval<law::ROLLING_EPSD, false>();
+  else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true>() : eval<law::ROLLING_CDT, false>();
+  else upd ? eval<law::ROLLING_NONE, true>() : eval<law::ROLLING_NONE, false>();
 }
 
-template <int ROLL> void PairGranHertzRolling::eval()
-{
-  const bool update_hist = update->setupflag == 0;
+/* ----------------------------------------------------------------------
+   pass 1: walk the neighbor list, reset the history of separated pairs and gather the
+   touching ones into the batch; when full, run the law over it and scatter the result
+------------------------------------------------------------------------- */
 
+template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
+{
+  Batch &b = *batch;
   double **x = atom->x;
-  double **f = atom->f;
-  double **torque = atom->torque;
+  double **v = atom->v;
+  double **omega = atom->omega;
   const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int *mask = atom->mask;
   const int *type = atom->type;
-  const int nlocal = atom->nlocal;
-  const int newton_pair = force->newton_pair;
   const double *special_lj = force->special_lj;
-  const double dt = update->dt;
+  const int frzbit = freeze_group_bit;
 
   const int inum = list->inum;
   const int *ilist = list->ilist;
@@ -309,21 +399,27 @@ template <int ROLL> void PairGranHertzRolling::eval()
   int **firsttouch = fix_history->firstflag;
   double **firsthistory = fix_history->firstvalue;
 
-  law::Contact c;
-  c.wall = false;
-  c.dt = dt;
-  law::Result o;
+  auto flush = [&](int n) {
+    batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2);
+    if (force->newton_pair) evflag ? batch_scatter<true, true>(n) : batch_scatter<true, false>(n);
+    else evflag ? batch_scatter<false, true>(n) : batch_scatter<false, false>(n);
+  };
 
+  // values are read into locals before the batch stores (which may alias atom arrays)
+  constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;
+  int n = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    const int itype = type[i];
     const double xi0 = x[i][0], xi1 = x[i][1], xi2 = x[i][2];
-    const double radi = radius[i];
+    const double vi0 = v[i][0], vi1 = v[i][1], vi2 = v[i][2];
+    const double wi0 = omega[i][0], wi1 = omega[i][1], wi2 = omega[i][2];
+    const double radi = radius[i], mi = rmass[i];
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     int *touch = firsttouch[i];
     double *allhistory = firsthistory[i];
-    const law::Params *prow = &law[itype * ntypes1];
+    const law::Params *prow = &law[type[i] * ntypes1];
+    const double frzi = (mask[i] & frzbit) ? 1.0 : 0.0;
 
     for (int jj = 0; jj < jnum; jj++) {
       int j = jlist[jj];
@@ -331,47 +427,96 @@ template <int ROLL> void PairGranHertzRolling::eval()
       j &= NEIGHMASK;
       if (factor_lj == 0.0) continue;
 
-      double dx[3] = {xi0 - x[j][0], xi1 - x[j][1], xi2 - x[j][2]};
-      const double rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      const double radsum = radi + radius[j];
-      double *hist = &allhistory[size_history * jj];
+      const double *xj = x[j];
+      const double dx0 = xi0 - xj[0], dx1 = xi1 - xj[1], dx2 = xi2 - xj[2];
+      const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
+      const double radj = radius[j];
+      const double radsum = radi + radj;
+      double *hist = &allhistory[NH * jj];
       if (!law::touching(rsq, radsum)) {
         if (touch[jj]) {
           touch[jj] = 0;
-          for (int k = 0; k < size_history; k++) hist[k] = 0.0;
+          for (int k = 0; k < NH; k++) hist[k] = 0.0;
         }
         continue;
       }
       touch[jj] = 1;
 
-      set_contact(i, j, dx, rsq, radsum, c);
-      law::compute_t<ROLL>(prow[type[j]], c, hist, update_hist, o);
+      const double *vj = v[j], *wj = omega[j];
+      const double vr0 = vi0 - vj[0], vr1 = vi1 - vj[1], vr2 = vi2 - vj[2];
+      const double wj0 = wj[0], wj1 = wj[1], wj2 = wj[2];
+      const double mj = rmass[j];
+      const double frz = frzi + ((mask[j] & frzbit) ? 2.0 : 0.0);
+      const law::Params *pij = &prow[type[j]];
+      double h[NH];
+      for (int k = 0; k < NH; k++) h[k] = hist[k];
 
-      if (factor_lj != 1.0) {
-        for (int k = 0; k < 3; k++) {
-          o.f[k] *= factor_lj;
-          o.ti[k] *= factor_lj;
-          o.tj[k] *= factor_lj;
-        }
+      b.i[n] = i;
+      b.j[n] = j;
+      b.hist[n] = hist;
+      b.p[n] = pij;
+      b.dx[0][n] = dx0;
+      b.dx[1][n] = dx1;
+      b.dx[2][n] = dx2;
+      b.rsq[n] = rsq;
+      b.radsum[n] = radsum;
+      b.radi[n] = radi;
+      b.radj[n] = radj;
+      b.mi[n] = mi;
+      b.mj[n] = mj;
+      b.frz[n] = frz;
+      b.factor[n] = factor_lj;
+      b.vr[0][n] = vr0;
+      b.vr[1][n] = vr1;
+      b.vr[2][n] = vr2;
+      b.wi[0][n] = wi0;
+      b.wi[1][n] = wi1;
+      b.wi[2][n] = wi2;
+      b.wj[0][n] = wj0;
+      b.wj[1][n] = wj1;
+      b.wj[2][n] = wj2;
+      for (int k = 0; k < NH; k++) b.h[k][n] = h[k];
+      if (++n == Batch::N) {
+        flush(n);
+        n = 0;
       }
-      f[i][0] += o.f[0];
-      f[i][1] += o.f[1];
-      f[i][2] += o.f[2];
-      torque[i][0] += o.ti[0];
-      torque[i][1] += o.ti[1];
-      torque[i][2] += o.ti[2];
-      if (newton_pair || j < nlocal) {
-        f[j][0] -= o.f[0];
-        f[j][1] -= o.f[1];
-        f[j][2] -= o.f[2];
-        torque[j][0] += o.tj[0];
-        torque[j][1] += o.tj[1];
-        torque[j][2] += o.tj[2];
-      }
-      if (evflag)
-        ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, o.f[0], o.f[1], o.f[2], dx[0], dx[1],
-                     dx[2]);
     }
+  }
+  if (n) flush(n);
+}
+
+/* ----------------------------------------------------------------------
+   pass 3: forces, torques and history back, in neighbor-list order
+------------------------------------------------------------------------- */
+
+template <bool NEWTON, bool EVFLAG> void PairGranHertzRolling::batch_scatter(int n)
+{
+  const Batch &b = *batch;
+  double **f = atom->f;
+  double **torque = atom->torque;
+  const int nlocal = atom->nlocal;
+  const int nh = size_history;
+  for (int l = 0; l < n; l++) {
+    const int i = b.i[l], j = b.j[l];
+    f[i][0] += b.f[0][l];
+    f[i][1] += b.f[1][l];
+    f[i][2] += b.f[2][l];
+    torque[i][0] += b.ti[0][l];
+    torque[i][1] += b.ti[1][l];
+    torque[i][2] += b.ti[2][l];
+    if (NEWTON || j < nlocal) {
+      f[j][0] -= b.f[0][l];
+      f[j][1] -= b.f[1][l];
+      f[j][2] -= b.f[2][l];
+      torque[j][0] += b.tj[0][l];
+      torque[j][1] += b.tj[1][l];
+      torque[j][2] += b.tj[2][l];
+    }
+    double *hist = b.hist[l];
+    for (int k = 0; k < nh; k++) hist[k] = b.h[k][l];
+    if (EVFLAG)
+      ev_tally_xyz(i, j, nlocal, NEWTON, 0.0, 0.0, b.f[0][l], b.f[1][l], b.f[2][l], b.dx[0][l],
+                   b.dx[1][l], b.dx[2][l]);
   }
 }
 

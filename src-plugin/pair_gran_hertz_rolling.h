@@ -10,6 +10,7 @@
 #include "pair.h"
 #include "law/contact_law.h"
 
+#include <memory>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -44,6 +45,19 @@ class PairGranHertzRolling : public Pair {
   int rolling_model() const { return rolling; }
   bool damping_limited() const { return limit_damping; }
 
+  // Contacts gathered from the neighbor list in structure-of-arrays form (one row per value,
+  // one column per contact), so the law runs over them in SIMD lanes, then scattered back in
+  // neighbor-list order (forces sum in the same order as a plain loop).
+  struct Batch {
+    static constexpr int N = 32;
+    int i[N], j[N];
+    double *hist[N];
+    const tbags::contact::Params *p[N];
+    double dx[3][N], rsq[N], radsum[N], radi[N], radj[N], mi[N], mj[N], frz[N], factor[N];
+    double vr[3][N], wi[3][N], wj[3][N], h[6][N];
+    double f[3][N], ti[3][N], tj[3][N];
+  };
+
  protected:
   int rolling;            // tbags::contact::Rolling
   bool limit_damping;
@@ -63,8 +77,12 @@ class PairGranHertzRolling : public Pair {
   class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
 
+  std::unique_ptr<Batch> batch;
+
   void allocate();
-  template <int ROLL> void eval();
+  template <int ROLL, bool UPDATE> void eval();
+  bool simd_avx2;    // the CPU runs the AVX2 build of the batch law
+  template <bool NEWTON, bool EVFLAG> void batch_scatter(int n);
   // geometry and kinematics of the pair i-j for the law (dx = x_i - x_j, already computed);
   // m* is the other particle's mass when one of them is frozen (fix freeze)
   void set_contact(int i, int j, double *dx, double rsq, double radsum,

@@ -114,107 +114,131 @@ inline bool touching(double rsq, double radsum) { return rsq < radsum * radsum; 
 #define TBAGS_INLINE inline
 #endif
 
-// One contact, with the rolling model fixed at compile time (the styles dispatch once per
-// compute). hist: 3 (or 6 for EPSD) doubles, updated when update is true.
-template <int ROLL>
-TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, bool update, Result &o)
+// One contact as values, branch-free (conditions are selects), so that the pair style can run
+// it over a batch of contacts in SIMD lanes; every other entry point calls it too.
+// In: dx = x_i - x_j (wall: as Contact), vr = v_i - v_j, angular velocities wi, wj.
+// In/out: ht (tangential) and hr (rolling, EPSD) history. UPDATE: integrate the history
+// (rotate onto the tangent plane, add the increment); the Coulomb reset applies regardless.
+// clip: p.limit_damping; rolling acts where p.mur > 0 (make_params: p.rolling is then ROLL).
+struct LaneOut {
+  vec::V3 f, ti, tj, fs, fr;
+  double fn, fne, delta, r;
+};
+
+template <int ROLL, bool UPDATE>
+TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, double rsq, double radsum,
+                               double reff, double meff, double radi, double radj,
+                               const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
+                               double dt, vec::V3 &ht, vec::V3 &hr, LaneOut &o)
 {
   using namespace vec;
-  const double r = std::sqrt(c.rsq);
+  const double r = std::sqrt(rsq);
   const double rinv = 1.0 / r;
-  const double delta = c.radsum - r;
-  const double n[3] = {c.dx[0] * rinv, c.dx[1] * rinv, c.dx[2] * rinv};
+  const double delta = radsum - r;
+  const V3 n = rinv * dx;
 
   // relative velocity at the contact point
-  double vr[3];
-  sub(c.vi, c.vj, vr);
   const double vnnr = dot(vr, n);
-  const double wr[3] = {c.radi * c.wi[0] + c.radj * c.wj[0], c.radi * c.wi[1] + c.radj * c.wj[1],
-                        c.radi * c.wi[2] + c.radj * c.wj[2]};
-  double wxn[3];
-  cross(wr, n, wxn);
-  double vtr[3];
-  for (int k = 0; k < 3; k++) vtr[k] = vr[k] - vnnr * n[k] - wxn[k];
+  const V3 wr = radi * wi + radj * wj;
+  const V3 vtr = (vr - vnnr * n) - cross(wr, n);
 
   // normal: Hertz + restitution damping
-  const double a = std::sqrt(c.reff * delta);
+  const double a = std::sqrt(reff * delta);
   const double fne = p.kn * a * delta;
-  const double sqma = std::sqrt(c.meff * a);
+  const double sqma = std::sqrt(meff * a);
   double fn = fne - p.cn * sqma * vnnr;
-  if (p.limit_damping && fn < 0.0) fn = 0.0;
+  fn = (clip & (fn < 0.0)) ? 0.0 : fn;
   const double fncrit = std::fabs(fn);
 
   // tangential: incremental Mindlin spring + damping, Coulomb cap
   const double damp_t = p.ct * sqma;
   const double kts = p.kt * a;
   const double fscrit = p.mu * fncrit;
-  if (update) {
-    if (std::fabs(dot(hist, n)) * kts > FRAME_EPS * fscrit) rotate_onto_plane(hist, n);
-    for (int k = 0; k < 3; k++) hist[k] += c.dt * vtr[k];
+  if (UPDATE) {
+    const bool rot = std::fabs(dot(ht, n)) * kts > FRAME_EPS * fscrit;
+    ht = select(rot, onto_plane(ht, n), ht) + dt * vtr;
   }
-  for (int k = 0; k < 3; k++) o.fs[k] = -damp_t * vtr[k] - kts * hist[k];
-  const double fs2 = dot(o.fs, o.fs);
-  if (fs2 > fscrit * fscrit) {    // sliding: |fs| > mu |F_n| (squares: no sqrt when sticking)
-    const double magfs = std::sqrt(fs2);
-    if (len(hist) != 0.0) {
-      const double s = fscrit / magfs;
-      for (int k = 0; k < 3; k++) hist[k] = -(s * o.fs[k] + damp_t * vtr[k]) / kts;
-      scale(s, o.fs);
-    } else {
-      zero(o.fs);
-    }
-  }
+  V3 fs = (-damp_t) * vtr - kts * ht;
+  const double fs2 = dot(fs, fs);
+  // sliding: |fs| > mu |F_n| (squares: no sqrt when sticking)
+  const bool slide = fs2 > fscrit * fscrit;
+  const bool hnz = dot(ht, ht) != 0.0;    // |xi| != 0
+  const double s = fscrit / std::sqrt(fs2);
+  ht = select(slide & hnz, (-1.0) * (s * fs + damp_t * vtr) / kts, ht);
+  fs = select(slide, hnz ? s * fs : V3{0.0, 0.0, 0.0}, fs);
 
-  for (int k = 0; k < 3; k++) o.f[k] = fn * n[k] + o.fs[k];
-  double tor[3];
-  cross(n, o.fs, tor);
-  const double armi = c.wall ? c.radi : c.radi - 0.5 * delta;
-  const double armj = c.radj - 0.5 * delta;
-  for (int k = 0; k < 3; k++) {
-    o.ti[k] = -armi * tor[k];
-    o.tj[k] = -armj * tor[k];
-  }
+  o.f = fn * n + fs;
+  const V3 tor = cross(n, fs);
+  const double armi = wall ? radi : radi - 0.5 * delta;
+  const double armj = radj - 0.5 * delta;
+  o.ti = (-armi) * tor;
+  o.tj = (-armj) * tor;
 
   // rolling resistance
-  zero(o.fr);
-  if (ROLL != ROLLING_NONE && p.rolling != ROLLING_NONE) {
-    double relrot[3];
-    sub(c.wi, c.wj, relrot);
-    double vrl[3];
-    cross(relrot, n, vrl);
-    scale(c.reff, vrl);
+  o.fr = V3{0.0, 0.0, 0.0};
+  if (ROLL != ROLLING_NONE) {
+    const bool on = p.mur > 0.0;
+    const V3 vrl = reff * cross(wi - wj, n);
     const double frcrit = p.mur * fncrit;
+    V3 fr;
     if (ROLL == ROLLING_EPSD) {
-      double *hr = hist + 3;
       const double ks = p.krs * a;
-      if (update) {
-        if (std::fabs(dot(hr, n)) * ks > FRAME_EPS * frcrit) rotate_onto_plane(hr, n);
-        for (int k = 0; k < 3; k++) hr[k] += c.dt * vrl[k];
+      V3 h = hr;
+      if (UPDATE) {
+        const bool rot = std::fabs(dot(h, n)) * ks > FRAME_EPS * frcrit;
+        h = select(rot, onto_plane(h, n), h) + dt * vrl;
       }
-      for (int k = 0; k < 3; k++) o.fr[k] = -ks * hr[k];
-      const double fr2 = dot(o.fr, o.fr);
-      if (fr2 > frcrit * frcrit) {
-        const double s = frcrit / std::sqrt(fr2);
-        for (int k = 0; k < 3; k++) hr[k] = -s * o.fr[k] / ks;
-        scale(s, o.fr);
-      }
+      fr = (-ks) * h;
+      const double fr2 = dot(fr, fr);
+      const bool cap = fr2 > frcrit * frcrit;
+      const double sr = frcrit / std::sqrt(fr2);
+      h = select(cap, ((-sr) * fr) / ks, h);
+      fr = select(cap, sr * fr, fr);
+      hr = select(on, h, hr);
     } else {    // CDT: constant magnitude against the rolling velocity
-      const double vl = len(vrl);
-      if (vl > 0.0)
-        for (int k = 0; k < 3; k++) o.fr[k] = -frcrit * vrl[k] / vl;
+      const double vl = std::sqrt(dot(vrl, vrl));
+      fr = select(vl > 0.0, ((-frcrit) * vrl) / vl, V3{0.0, 0.0, 0.0});
     }
-    double troll[3];
-    cross(n, o.fr, troll);
-    for (int k = 0; k < 3; k++) {
-      o.ti[k] += c.reff * troll[k];
-      o.tj[k] -= c.reff * troll[k];
-    }
+    o.fr = select(on, fr, o.fr);
+    const V3 troll = reff * cross(n, o.fr);
+    o.ti = select(on, o.ti + troll, o.ti);
+    o.tj = select(on, o.tj - troll, o.tj);
   }
 
+  o.fs = fs;
   o.fn = fn;
   o.fne = fne;
   o.delta = delta;
   o.r = r;
+}
+
+// One contact, with the rolling model fixed at compile time. hist: 3 (or 6 for EPSD) doubles,
+// integrated when update is true.
+template <int ROLL>
+TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, bool update, Result &o)
+{
+  using namespace vec;
+  const V3 vr = load3(c.vi) - load3(c.vj);
+  V3 ht = load3(hist);
+  V3 hr = ROLL == ROLLING_EPSD ? load3(hist + 3) : V3{0.0, 0.0, 0.0};
+  LaneOut lo;
+  if (update)
+    contact_lane<ROLL, true>(p, p.limit_damping, load3(c.dx), c.rsq, c.radsum, c.reff, c.meff, c.radi, c.radj, vr,
+                             load3(c.wi), load3(c.wj), c.wall, c.dt, ht, hr, lo);
+  else
+    contact_lane<ROLL, false>(p, p.limit_damping, load3(c.dx), c.rsq, c.radsum, c.reff, c.meff, c.radi, c.radj, vr,
+                              load3(c.wi), load3(c.wj), c.wall, c.dt, ht, hr, lo);
+  store3(ht, hist);
+  if (ROLL == ROLLING_EPSD) store3(hr, hist + 3);
+  store3(lo.f, o.f);
+  store3(lo.ti, o.ti);
+  store3(lo.tj, o.tj);
+  store3(lo.fs, o.fs);
+  store3(lo.fr, o.fr);
+  o.fn = lo.fn;
+  o.fne = lo.fne;
+  o.delta = lo.delta;
+  o.r = lo.r;
 }
 
 // One contact, rolling model from the parameters (tests, the plate fix, single()).

@@ -33,6 +33,38 @@ inline void rotate_onto_plane(double *a, const double *n)
   scale(prj > 0.0 ? mag / prj : 0.0, a);
 }
 
+
+// 3-vector by value, for the branch-free contact kernel (the compiler keeps it in registers
+// and can run the kernel over several contacts in SIMD lanes). Same operation order as above.
+struct V3 {
+  double x, y, z;
+};
+inline V3 load3(const double *a) { return V3{a[0], a[1], a[2]}; }
+inline void store3(const V3 &a, double *b) { b[0] = a.x; b[1] = a.y; b[2] = a.z; }
+inline V3 operator+(const V3 &a, const V3 &b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(const V3 &a, const V3 &b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator*(double s, const V3 &a) { return V3{s * a.x, s * a.y, s * a.z}; }
+inline V3 operator/(const V3 &a, double s) { return V3{a.x / s, a.y / s, a.z / s}; }
+inline double dot(const V3 &a, const V3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(const V3 &a, const V3 &b)
+{
+  return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline V3 select(bool c, const V3 &a, const V3 &b)
+{
+  return V3{c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
+}
+// rotate_onto_plane() above as a value: a without its component along n, at a's length
+inline V3 onto_plane(const V3 &a, const V3 &n)
+{
+  const double an = dot(a, n);
+  const double mag = std::sqrt(dot(a, a));
+  const V3 b = a - an * n;
+  const double prj = std::sqrt(dot(b, b));
+  const double s = prj > 0.0 ? mag / prj : 0.0;
+  return s * b;
+}
+
 }    // namespace vec
 }    // namespace tbags
 #endif
