@@ -5,7 +5,9 @@ Three panels, bag particles coloured by the magnitude of their displacement from
 state (mm), the filled-state positions as grey dots, the plates as thick lines:
 (a) side view: all bag particles seen along y (nearest drawn last);
 (b) central x-z cross-section (shear plane), sand grains in light grey;
-(c) central y-z cross-section (across the shear direction), same.
+(c) central y-z cross-section (across the shear direction), same;
+(d) the gap between the top plate and the bag's top surface along x in the x-z section;
+(e) the outward displacement of the side walls against height in the y-z section.
 Numbers (stats): largest displacement of bag and sand, the gap between the top plate and the top
 surface of the bag (per 5 mm cell of the plan: plate z - max(z + r) of the bag particles in it),
 the share of the top surface that is detached (gap > 0.1 mm), the largest outward bulge of the
@@ -33,19 +35,29 @@ def top_gaps(g, z_top):
     return (z_top - inner) * 1000
 
 
-def side_bulge(g, half):
-    """Largest outward displacement (mm) of the side walls (|y0 - mid| in the outer 10 % of the
-    half width, filled state) in the central y-z section, away from the plates."""
+def gap_profile(g, z_top, sel):
+    """Gap (mm) between the top plate and the bag's top surface along x: per s-wide bin of x,
+    plate z - max(z + r) of the bag particles in sel; returns (bin centres in mm, gaps in mm)."""
+    x, top = g.pos[sel, 0], g.pos[sel, 2] + g.radius[sel]
+    k = np.floor((x - x.min()) / section.S).astype(int)
+    highest = np.full(k.max() + 1, -np.inf)
+    np.maximum.at(highest, k, top)
+    centres = x.min() + (np.arange(len(highest)) + 0.5) * section.S
+    ok = np.isfinite(highest)
+    return centres[ok] * 1000, (z_top - highest[ok]) * 1000
+
+
+def wall_points(g, half):
+    """The side walls (outer 10 % of the half width in y, filled state) of the central y-z
+    section, away from the plates: (filled-state z in mm, outward displacement in mm, side -1/+1)."""
     sec = section.in_yz(g, half) & g.bag
     y0 = g.pos[sec, 1] - g.disp[sec, 1]
     z0 = g.pos[sec, 2] - g.disp[sec, 2]
     mid = 0.5 * (y0.min() + y0.max())
     halfw = 0.5 * (y0.max() - y0.min())
     wall = (np.abs(y0 - mid) > 0.9 * halfw) & (z0 > z0.min() + section.S / 2) & (z0 < z0.max() - section.S / 2)
-    if not wall.any():
-        return 0.0
-    outward = np.sign(y0 - mid)[wall] * g.disp[sec, 1][wall]
-    return float(outward.max() * 1000)
+    side = np.sign(y0 - mid)[wall]
+    return z0[wall] * 1000, side * g.disp[sec, 1][wall] * 1000, side
 
 
 def figure(run, step, half_band=None):
@@ -61,7 +73,14 @@ def figure(run, step, half_band=None):
     mm = 1000.0
     zmax = z_top if z_top is not None else float((g.pos[:, 2] + g.radius).max())
 
-    fig, (a_side, a_xz, a_yz) = style.figure(3, 1, width=7.0, height=7.6, gridspec_kw=dict(hspace=0.5))
+    fig = style.figure(1, 1, width=7.0, height=9.6)[0]
+    fig.delaxes(fig.axes[0])
+    grid = fig.add_gridspec(4, 3, hspace=0.55, wspace=0.3, height_ratios=[1, 1, 1, 0.9],
+                            width_ratios=[1, 1, 0.035])
+    a_side, a_xz, a_yz = (fig.add_subplot(grid[k, :2]) for k in range(3))
+    cax = fig.add_subplot(grid[:3, 2])
+    cax.grid(False)
+    a_gap, a_bulge = fig.add_subplot(grid[3, 0]), fig.add_subplot(grid[3, 1])
 
     # (a) side view along y: all bag particles, those at larger y (nearer a viewer at +y) on top
     order = np.argsort(g.pos[bag, 1])
@@ -86,23 +105,37 @@ def figure(run, step, half_band=None):
         lo, hi = g.pos[sel, h].min(), g.pos[sel, h].max()
         section.frame(ax, name + " (mm)", lo, hi, zmax)
         section.plates(ax, lo, hi, z_top)
-        ax.set_title(title + ", band $\\pm$%.1f mm" % (half * mm))
-    for ax, tag in zip((a_side, a_xz, a_yz), "abc"):
+        ax.set_title(title + ", band $\\pm$%.1f mm (+: filled state)" % (half * mm))
+    # (d) top-surface gap along x in the x-z section; (e) outward bulge of the side walls
+    if z_top is not None:
+        xg, gap = gap_profile(g, z_top, section.in_xz(g, half) & bag)
+        a_gap.plot(xg, gap, "o-", ms=3, color="tab:blue")
+    a_gap.axhline(GAP_DETACHED_MM, color="0.5", lw=0.6, ls="--")
+    a_gap.set_xlabel("$x$ (mm)")
+    a_gap.set_ylabel("gap top plate - bag (mm)")
+    a_gap.set_title("top gap, central x-z section")
+    zw, out, side = wall_points(g, half)
+    for s, marker, name in ((-1, "v", "wall at $-y$"), (1, "^", "wall at $+y$")):
+        a_bulge.plot(out[side == s], zw[side == s], marker, ms=3, ls="none", label=name)
+    a_bulge.axvline(0, color="0.5", lw=0.6)
+    a_bulge.set_xlabel("outward displacement (mm)")
+    a_bulge.set_ylabel("$z$ in the filled state (mm)")
+    a_bulge.set_title("side walls, central y-z section")
+    a_bulge.legend(frameon=False, fontsize=7)
+    for ax, tag in zip((a_side, a_xz, a_yz, a_gap, a_bulge), "abcde"):
         style.panel_label(ax, "(%s)" % tag)
-    a_yz.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3), frameon=False, fontsize=7)
-    bar = fig.colorbar(cm.ScalarMappable(norm=norm, cmap=cmap), ax=[a_side, a_xz, a_yz], shrink=0.5,
-                       pad=0.03, aspect=30)
+    bar = fig.colorbar(cm.ScalarMappable(norm=norm, cmap=cmap), cax=cax)
     bar.set_label("bag displacement from the filled state (mm)")
 
     stats = dict(run=run.name, step=step, u_mm=u, d_bag_max_mm=float(dmag[bag].max()),
                  d_sand_max_mm=float(dmag[~bag].max()) if (~bag).any() else 0.0,
-                 bulge_mm=side_bulge(g, half))
+                 bulge_mm=float(out.max()) if len(out) else 0.0)
     if z_top is not None:
         gaps = top_gaps(g, z_top)
         stats.update(gap_max_mm=float(gaps.max()), gap_median_mm=float(np.median(gaps)),
                      detached=float((gaps > GAP_DETACHED_MM).mean()))
-        a_side.set_title("side view, all bag particles ($u$ = %.2f mm; top surface: gap to the plate "
-                         "up to %.2f mm, %.0f %% detached)" % (u, stats["gap_max_mm"], 100 * stats["detached"]))
+        a_gap.set_title("top gap, central section (whole top: max %.2f mm,\n%.0f %% of it > %.1f mm)"
+                        % (stats["gap_max_mm"], 100 * stats["detached"], GAP_DETACHED_MM), fontsize=8)
     return fig, stats
 
 

@@ -19,7 +19,7 @@ from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_LINE, VTK_VERTEX, vtkCellArray, vtkPolyData, vtkUnstructuredGrid
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter, vtkXMLUnstructuredGridWriter
 
-from tbagspost import network
+from tbagspost import fail, network
 from tbagspost.progress import Progress
 
 KIND_CODE = {"bag-bag": 0, "bag-sand": 1, "sand-sand": 2}
@@ -53,7 +53,7 @@ def _write(writer, data, path):
     writer.SetDataModeToAppended()
     writer.SetCompressorTypeToZLib()
     if not writer.Write():
-        raise SystemExit("tbagspost: VTK could not write %s" % path)
+        fail("VTK could not write %s" % path)
     return path
 
 
@@ -113,7 +113,7 @@ def convert(run, outdir=None):
     out.mkdir(parents=True, exist_ok=True)
     steps = run.steps("grains")
     if not steps:
-        raise SystemExit("tbagspost: %s: no dump.grains.* files" % run.path)
+        fail("%s: no dump.grains.* files" % run.path)
     has = {kind: set(run.steps(kind)) for kind in ("contacts", "bonds")}
     series = {"particles": [], "contacts": [], "bonds": []}
     for step in Progress(steps, "ParaView %s" % run.name):
