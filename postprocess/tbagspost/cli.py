@@ -45,6 +45,7 @@ def parse(argv=None):
                     help="half width (mm) of the central sections (default: one mean sand diameter, >= 2.5)")
     ap.add_argument("--dt", type=float, default=None, help="time step (s) if the run has no log")
     ap.add_argument("--format", default="png", help="figure formats, e.g. png,pdf (default png)")
+    ap.add_argument("--dpi", type=float, default=None, help="resolution of raster figures (default 200)")
     args = ap.parse_args(argv)
     args.only = set() if args.only == "none" else set(args.only.split(","))
     unknown = args.only - {"shear", "shape", "network"}
@@ -90,14 +91,14 @@ def process(run, args, several):
     half = args.band / 1000 if args.band else None
     if "shear" in args.only:
         fig, st = shear.figure([run])
-        written += style.save(fig, out / "shear", args.format)
+        written += style.save(fig, out / "shear", args.format, args.dpi)
         lines.append("S-u, w-u: " + shear.describe(st[0]))
     for name, module in (("shape", shape), ("network", network)):
         if name not in args.only:
             continue
         for step in steps_for(run, args.u, "grains" if name == "shape" else "contacts"):
             fig, st = module.figure(run, step, half)
-            written += style.save(fig, out / ("%s_u%.1fmm" % (name, st["u_mm"])), args.format)
+            written += style.save(fig, out / ("%s_u%.1fmm" % (name, st["u_mm"])), args.format, args.dpi)
             lines.append("%s: %s" % (name, module.describe(st)))
     if args.vtk:
         written += vtkout.convert(run, out / "paraview" if args.outdir else None)
@@ -111,7 +112,7 @@ def process_triax(csv, args, several):
     """The triaxial figure of one run; returns the summary lines and written paths."""
     out = run_outdir(Path(csv).parent, args, several)
     fig, st = triax.figure([csv])
-    written = style.save(fig, out / "triax", args.format)
+    written = style.save(fig, out / "triax", args.format, args.dpi)
     lines = ["triaxial: " + triax.describe(st[0])]
     (out / "summary.txt").write_text("\n".join(lines) + "\n")
     return lines, written
@@ -146,6 +147,6 @@ def main(argv=None):
     if len(triax_csvs) > 1:
         overlays.append(("triax-overlay", triax.figure(triax_csvs)[0], [Path(c).parent for c in triax_csvs]))
     for name, fig, paths in overlays:
-        for path in style.save(fig, overlay_dir(paths, args) / name, args.format):
+        for path in style.save(fig, overlay_dir(paths, args) / name, args.format, args.dpi):
             print("wrote %s" % path)
     return 0

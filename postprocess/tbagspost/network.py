@@ -77,10 +77,8 @@ def figure(run, step, half_band=None):
     bseg = ends(g, b["id1"], b["id2"])
     b_sec = (np.abs(bseg[:, :, 1] - yc) <= section.S / 2).all(axis=1)
 
-    fig = style.figure(1, 1, width=7.0, height=8.0)[0]
-    fig.delaxes(fig.axes[0])
-    grid = fig.add_gridspec(3, 4, hspace=0.45, wspace=0.08, height_ratios=[1.2, 1.2, 1],
-                            width_ratios=[1, 0.025, 0.1, 0.025])
+    fig, grid = style.grid_figure(3, 4, 7.0, 8.0, hspace=0.45, wspace=0.08, height_ratios=[1.2, 1.2, 1],
+                                  width_ratios=[1, 0.025, 0.1, 0.025])
     a_net, a_bond, a_prof = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[2, 0])
     caxes = [fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[0, 3]), fig.add_subplot(grid[1, 1])]
     xlo, xhi = g.pos[g.bag, 0].min(), g.pos[g.bag, 0].max()
@@ -133,8 +131,10 @@ def figure(run, step, half_band=None):
 
     ss = kind == "sand-sand"
     edge = edge_mask(g, mid)
+    with_sand = kind != "bag-bag"
     stats = dict(run=run.name, step=step, u_mm=u, n_contacts=len(fn), n_section=int(shown.sum()),
-                 fn_max_N=float(fn.max()) if len(fn) else 0.0,
+                 fn_max_N=float(fn[with_sand].max()) if with_sand.any() else 0.0,
+                 fn_max_bagbag_N=float(fn[~with_sand].max()) if (~with_sand).any() else 0.0,
                  fn_edge_N=_mean(fn, ss & edge), fn_centre_N=_mean(fn, ss & ~edge),
                  fn_edge_sec_N=_mean(fn, ss & edge & in_sec), fn_centre_sec_N=_mean(fn, ss & ~edge & in_sec),
                  fn_bag_sand_N=_mean(fn, kind == "bag-sand"),
@@ -145,9 +145,11 @@ def figure(run, step, half_band=None):
 
 def describe(st):
     """One line of numbers for a network figure."""
-    return ("%s u = %.2f mm: %d contacts (%d shown in the section), largest f_n %.2f N; sand-sand mean "
+    return ("%s u = %.2f mm: %d contacts (%d shown in the section), largest f_n on sand %.2f N (bag-bag "
+            "%.2f N); sand-sand mean "
             "f_n near the edges %.3f N vs centre %.3f N (section: %.3f vs %.3f N), bag-sand mean %.3f N; "
             "bond tension max %.2f N, mean of taut bonds %.3f N, %.0f %% of bonds slack"
-            % (st["run"], st["u_mm"], st["n_contacts"], st["n_section"], st["fn_max_N"], st["fn_edge_N"],
+            % (st["run"], st["u_mm"], st["n_contacts"], st["n_section"], st["fn_max_N"], st["fn_max_bagbag_N"],
+               st["fn_edge_N"],
                st["fn_centre_N"], st["fn_edge_sec_N"], st["fn_centre_sec_N"], st["fn_bag_sand_N"],
                st["tension_max_N"], st["tension_mean_N"], 100 * st["slack"]))

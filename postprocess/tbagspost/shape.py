@@ -7,11 +7,11 @@ state (mm), the filled-state positions as grey dots, the plates as thick lines:
 (b) central x-z cross-section (shear plane), sand grains in light grey;
 (c) central y-z cross-section (across the shear direction), same;
 (d) the gap between the top plate and the bag's top surface along x in the x-z section;
-(e) the outward displacement of the side walls against height in the y-z section.
+(e) the bulge of the four walls against height (outward distance from the chord joining the
+    wall's lowest and highest particle, free of the shear tilt and of a sideways drift).
 Numbers (stats): largest displacement of bag and sand, the gap between the top plate and the top
 surface of the bag (per 5 mm cell of the plan: plate z - max(z + r) of the bag particles in it),
-the share of the top surface that is detached (gap > 0.1 mm), the largest outward bulge of the
-side walls in the y-z section.
+the share of the top surface that is detached (gap > 0.1 mm), the largest bulge of each wall.
 """
 import numpy as np
 from matplotlib import cm, colors
@@ -47,17 +47,31 @@ def gap_profile(g, z_top, sel):
     return centres[ok] * 1000, (z_top - highest[ok]) * 1000
 
 
-def wall_points(g, half):
-    """The side walls (outer 10 % of the half width in y, filled state) of the central y-z
-    section, away from the plates: (filled-state z in mm, outward displacement in mm, side -1/+1)."""
-    sec = section.in_yz(g, half) & g.bag
-    y0 = g.pos[sec, 1] - g.disp[sec, 1]
-    z0 = g.pos[sec, 2] - g.disp[sec, 2]
-    mid = 0.5 * (y0.min() + y0.max())
-    halfw = 0.5 * (y0.max() - y0.min())
-    wall = (np.abs(y0 - mid) > 0.9 * halfw) & (z0 > z0.min() + section.S / 2) & (z0 < z0.max() - section.S / 2)
-    side = np.sign(y0 - mid)[wall]
-    return z0[wall] * 1000, side * g.disp[sec, 1][wall] * 1000, side
+WALLS = (("trailing wall ($-x$)", 0, -1), ("leading wall ($+x$)", 0, 1),
+         ("side wall $-y$", 1, -1), ("side wall $+y$", 1, 1))
+
+
+def wall_profiles(g, half):
+    """Bulging of the four walls in the central sections (x walls in the x-z section, y walls
+    in the y-z section). A wall is the bag particles in the outer 10 % of the section's half
+    length (filled state), taken level by level (5 mm rows of filled-state height, the band's
+    rows averaged); its bulge is the outward distance of each level from the straight line
+    (chord) joining the wall's bottom and top levels now, so neither the shear tilt nor a
+    sideways shift of the whole wall counts. Returns [(name, z in mm, outward bulge in mm)]."""
+    out = []
+    for name, h, side in WALLS:
+        sel = (section.in_xz(g, half) if h == 0 else section.in_yz(g, half)) & g.bag
+        p, p0 = g.pos[sel], g.pos[sel] - g.disp[sel]
+        mid, halfw = 0.5 * (p0[:, h].min() + p0[:, h].max()), 0.5 * (p0[:, h].max() - p0[:, h].min())
+        wall = side * (p0[:, h] - mid) > 0.9 * halfw
+        level = np.round((p0[wall, 2] - p0[wall, 2].min()) / section.S).astype(int)
+        rows = np.array([p[wall][level == k].mean(axis=0) for k in np.unique(level)])
+        if len(rows) < 3:
+            continue
+        lo, hi = rows[0], rows[-1]
+        chord = lo[h] + (hi[h] - lo[h]) * (rows[1:-1, 2] - lo[2]) / (hi[2] - lo[2])
+        out.append((name, rows[1:-1, 2] * 1000, side * (rows[1:-1, h] - chord) * 1000))
+    return out
 
 
 def figure(run, step, half_band=None):
@@ -73,10 +87,8 @@ def figure(run, step, half_band=None):
     mm = 1000.0
     zmax = z_top if z_top is not None else float((g.pos[:, 2] + g.radius).max())
 
-    fig = style.figure(1, 1, width=7.0, height=9.6)[0]
-    fig.delaxes(fig.axes[0])
-    grid = fig.add_gridspec(4, 3, hspace=0.55, wspace=0.3, height_ratios=[1, 1, 1, 0.9],
-                            width_ratios=[1, 1, 0.035])
+    fig, grid = style.grid_figure(4, 3, 7.0, 9.6, hspace=0.55, wspace=0.3, height_ratios=[1, 1, 1, 0.9],
+                                  width_ratios=[1, 1, 0.035])
     a_side, a_xz, a_yz = (fig.add_subplot(grid[k, :2]) for k in range(3))
     cax = fig.add_subplot(grid[:3, 2])
     cax.grid(False)
@@ -114,13 +126,14 @@ def figure(run, step, half_band=None):
     a_gap.set_xlabel("$x$ (mm)")
     a_gap.set_ylabel("gap top plate - bag (mm)")
     a_gap.set_title("top gap, central x-z section")
-    zw, out, side = wall_points(g, half)
-    for s, marker, name in ((-1, "v", "wall at $-y$"), (1, "^", "wall at $+y$")):
-        a_bulge.plot(out[side == s], zw[side == s], marker, ms=3, ls="none", label=name)
+    walls = wall_profiles(g, half)
+    for (name, zw, off), marker in zip(walls, "<>v^"):
+        a_bulge.plot(off, zw, marker + "-", ms=3, lw=0.8, label=name)
     a_bulge.axvline(0, color="0.5", lw=0.6)
-    a_bulge.set_xlabel("outward displacement (mm)")
-    a_bulge.set_ylabel("$z$ in the filled state (mm)")
-    a_bulge.set_title("side walls, central y-z section")
+    a_bulge.set_xlabel("outward bulge from the wall's chord (mm)")
+    a_bulge.set_ylabel("$z$ (mm)")
+    a_bulge.set_title("walls, central sections")
+    a_bulge.legend(frameon=False, fontsize=6)
     a_bulge.legend(frameon=False, fontsize=7)
     for ax, tag in zip((a_side, a_xz, a_yz, a_gap, a_bulge), "abcde"):
         style.panel_label(ax, "(%s)" % tag)
@@ -129,7 +142,7 @@ def figure(run, step, half_band=None):
 
     stats = dict(run=run.name, step=step, u_mm=u, d_bag_max_mm=float(dmag[bag].max()),
                  d_sand_max_mm=float(dmag[~bag].max()) if (~bag).any() else 0.0,
-                 bulge_mm=float(out.max()) if len(out) else 0.0)
+                 bulge_mm={name.replace("$", ""): float(off.max()) for name, _, off in walls})
     if z_top is not None:
         gaps = top_gaps(g, z_top)
         stats.update(gap_max_mm=float(gaps.max()), gap_median_mm=float(np.median(gaps)),
@@ -141,9 +154,9 @@ def figure(run, step, half_band=None):
 
 def describe(st):
     """One line of numbers for a deformed-shape figure."""
-    line = ("%s u = %.2f mm: largest displacement bag %.2f mm, sand %.2f mm; side walls bulge "
-            "outward up to %.2f mm" % (st["run"], st["u_mm"], st["d_bag_max_mm"], st["d_sand_max_mm"],
-                                        st["bulge_mm"]))
+    line = ("%s u = %.2f mm: largest displacement bag %.2f mm, sand %.2f mm; walls bulge outward from "
+            "their chord by up to %s" % (st["run"], st["u_mm"], st["d_bag_max_mm"], st["d_sand_max_mm"],
+                                         ", ".join("%.2f mm (%s)" % (v, k) for k, v in st["bulge_mm"].items())))
     if "gap_max_mm" in st:
         line += ("; top surface: gap to the top plate up to %.2f mm (median %.2f mm), %.0f %% of it "
                  "detached (> %.1f mm)" % (st["gap_max_mm"], st["gap_median_mm"], 100 * st["detached"],

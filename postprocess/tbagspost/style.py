@@ -31,7 +31,13 @@ def figure(nrows=1, ncols=1, width=7.0, height=3.0, **kw):
     return fig, axes
 
 
-def save(fig, path, formats=("png",)):
+def grid_figure(nrows, ncols, width, height, **gridspec):
+    """A new empty Figure and a GridSpec of nrows x ncols cells (for panels spanning cells)."""
+    fig = plt.figure(figsize=(width, height))
+    return fig, fig.add_gridspec(nrows, ncols, **gridspec)
+
+
+def save(fig, path, formats=("png",), dpi=None):
     """Save fig as path.<fmt> for each format (path has no suffix; dots in its name stay);
     returns the written paths. Closes the figure."""
     path = Path(path)
@@ -39,7 +45,7 @@ def save(fig, path, formats=("png",)):
     out = []
     for fmt in formats:
         p = path.parent / (path.name + "." + fmt)
-        fig.savefig(p)
+        fig.savefig(p, dpi=dpi or PAPER["savefig.dpi"])
         out.append(p)
     plt.close(fig)
     return out
