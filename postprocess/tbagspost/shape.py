@@ -21,30 +21,34 @@ from tbagspost import section, style
 GAP_DETACHED_MM = 0.1
 
 
+def top_layer(g):
+    """Mask of the bag's top face: bag particles on the highest level of the filled state."""
+    z0 = g.pos[:, 2] - g.disp[:, 2]
+    return g.bag & (z0 > z0[g.bag].max() - section.S / 2)
+
+
 def top_gaps(g, z_top):
-    """Gap (mm) between the top plate and the bag's top surface per s x s cell of the plan,
-    for the interior cells (the outer ring of cells, the rounded edges, left out)."""
-    bag = g.bag
-    x, y, top = g.pos[bag, 0], g.pos[bag, 1], g.pos[bag, 2] + g.radius[bag]
-    i = np.floor((x - x.min()) / section.S).astype(int)
-    j = np.floor((y - y.min()) / section.S).astype(int)
-    highest = np.full((i.max() + 1, j.max() + 1), -np.inf)
-    np.maximum.at(highest, (i, j), top)
-    inner = highest[1:-1, 1:-1]
-    inner = inner[np.isfinite(inner)]
-    return (z_top - inner) * 1000
+    """Gap (mm) between the top plate and each particle of the bag's top face (z + r), for the
+    interior of the face (its outer ring, the rounded edges, left out); particles are picked by
+    their filled-state position, so the face is followed as it shears."""
+    top = top_layer(g)
+    p0 = g.pos[top] - g.disp[top]
+    inner = np.ones(len(p0), dtype=bool)
+    for h in (0, 1):
+        inner &= (p0[:, h] > p0[:, h].min() + section.S / 2) & (p0[:, h] < p0[:, h].max() - section.S / 2)
+    return (z_top - g.pos[top, 2] - g.radius[top])[inner] * 1000
 
 
 def gap_profile(g, z_top, sel):
-    """Gap (mm) between the top plate and the bag's top surface along x: per s-wide bin of x,
-    plate z - max(z + r) of the bag particles in sel; returns (bin centres in mm, gaps in mm)."""
-    x, top = g.pos[sel, 0], g.pos[sel, 2] + g.radius[sel]
-    k = np.floor((x - x.min()) / section.S).astype(int)
-    highest = np.full(k.max() + 1, -np.inf)
-    np.maximum.at(highest, k, top)
-    centres = x.min() + (np.arange(len(highest)) + 0.5) * section.S
-    ok = np.isfinite(highest)
-    return centres[ok] * 1000, (z_top - highest[ok]) * 1000
+    """Gap (mm) between the top plate and the bag's top face along x among the particles sel:
+    per grid column (filled-state x), plate z - max(z + r); returns (mean x now in mm, gap in mm)."""
+    top = top_layer(g) & sel
+    column = np.round((g.pos[top, 0] - g.disp[top, 0]) / section.S).astype(int)
+    x, height = g.pos[top, 0], g.pos[top, 2] + g.radius[top]
+    keys = np.unique(column)
+    xs = np.array([x[column == k].mean() for k in keys])
+    highest = np.array([height[column == k].max() for k in keys])
+    return xs * 1000, (z_top - highest) * 1000
 
 
 WALLS = (("trailing wall ($-x$)", 0, -1), ("leading wall ($+x$)", 0, 1),

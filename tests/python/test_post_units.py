@@ -162,3 +162,39 @@ def test_triaxial_runs(tmp_path):
     (dirs[0] / "triax.csv").write_text(head + "1,2,3")
     with pytest.raises(SystemExit, match="triax.csv"):
         triax.read(dirs[0] / "triax.csv")
+
+
+def box_bag(bulge=0.0, tilt=0.0, drift=0.0, sink=0.0):
+    """Bag particles on a 9 x 9 x 5 grid (s = 5 mm) as a Grains in its filled state, displaced:
+    the +x wall bulges outward by `bulge` at mid-height (a sine over the height), every
+    particle moves by tilt * z in x (shear) and by drift in y, and the top-centre particle
+    sinks by `sink`."""
+    from tbagspost import section
+    s = section.S
+    pts = np.array([(i, j, k) for i in range(9) for j in range(9) for k in range(5)
+                    if i in (0, 8) or j in (0, 8) or k in (0, 4)], dtype=float) * s
+    disp = np.zeros_like(pts)
+    disp[:, 0] = tilt * pts[:, 2]
+    disp[:, 1] = drift
+    wall = pts[:, 0] == 8 * s
+    disp[wall, 0] += bulge * np.sin(np.pi * pts[wall, 2] / (4 * s))
+    top = (pts[:, 2] == 4 * s) & (pts[:, 0] == 4 * s) & (pts[:, 1] == 4 * s)
+    disp[top, 2] -= sink
+    n = len(pts)
+    return dumps.Grains(step=1, ids=np.arange(1, n + 1), types=np.ones(n, dtype=int), radius=np.full(n, s / 2),
+                        pos=pts + disp, vel=np.zeros((n, 3)), disp=disp, lo=pts.min(axis=0), hi=pts.max(axis=0))
+
+
+def test_wall_bulge_and_top_gap_on_a_known_shape():
+    from tbagspost import section, shape
+    g = box_bag(bulge=0.001, tilt=0.1, drift=0.002, sink=0.0007)
+    walls = {name: (z, off) for name, z, off in shape.wall_profiles(g, section.S / 2)}
+    z, off = walls["leading wall ($+x$)"]
+    assert np.allclose(z, [5, 10, 15]) and np.allclose(off, 1.0 * np.sin(np.pi * np.array([1, 2, 3]) / 4))
+    for name in ("trailing wall ($-x$)", "side wall $-y$", "side wall $+y$"):   # tilt and drift do not count
+        assert np.allclose(walls[name][1], 0, atol=1e-9), name
+    z_top = 4 * section.S + section.S / 2 + 0.0001      # plate 0.1 mm above the top particles
+    gaps = shape.top_gaps(g, z_top)
+    assert len(gaps) == 7 * 7 and gaps.max() == pytest.approx(0.8) and np.median(gaps) == pytest.approx(0.1)
+    x, gap = shape.gap_profile(g, z_top, section.in_xz(g, section.S / 2) & g.bag)
+    assert gap.max() == pytest.approx(0.8) and np.sum(gap > 0.15) == 1
