@@ -24,7 +24,7 @@
 #include <cstring>
 
 // the batch law is also built for AVX2 and picked at run time (GCC and Clang on x86-64)
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__AVX2__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__AVX2__) && !defined(TBAGS_NO_AVX2_CLONE)
 #define TBAGS_HAVE_AVX2_CLONE 1
 #endif
 
@@ -311,13 +311,15 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip)
     double meff = mi * mj / (mi + mj);
     meff = b.frz[l] == 1.0 ? mj : meff;
     meff = b.frz[l] >= 2.0 ? mi : meff;
-    const double radi = b.radi[l], radj = b.radj[l], radsum = b.radsum[l];
+    // r^2 and r_i + r_j as in the gather (same operations, same bits)
+    const double dx0 = b.dx[0][l], dx1 = b.dx[1][l], dx2 = b.dx[2][l];
+    const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
+    const double radi = b.radi[l], radj = b.radj[l], radsum = radi + radj;
     V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
     V3 hr{0.0, 0.0, 0.0};
     if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
     law::LaneOut o;
-    law::contact_lane<ROLL, UPDATE>(*b.p[l], clip, V3{b.dx[0][l], b.dx[1][l], b.dx[2][l]},
-                                    b.rsq[l], radsum, radi * radj / radsum, meff, radi, radj,
+    law::contact_lane<ROLL, UPDATE>(*b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, radi * radj / radsum, meff, radi, radj,
                                     V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
                                     V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
                                     V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, false, dt, ht, hr, o);
@@ -381,10 +383,12 @@ void PairGranHertzRolling::compute(int eflag, int vflag)
 
 template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
 {
+  if (list->inum == 0) return;
   Batch &b = *batch;
-  double **x = atom->x;
-  double **v = atom->v;
-  double **omega = atom->omega;
+  // per-atom 3-vectors as flat arrays (LAMMPS allocates them contiguously): one load less
+  const double *x = atom->x[0];
+  const double *v = atom->v[0];
+  const double *omega = atom->omega[0];
   const double *radius = atom->radius;
   const double *rmass = atom->rmass;
   const int *mask = atom->mask;
@@ -399,20 +403,20 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
   int **firsttouch = fix_history->firstflag;
   double **firsthistory = fix_history->firstvalue;
 
+  constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
   auto flush = [&](int n) {
     batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2);
-    if (force->newton_pair) evflag ? batch_scatter<true, true>(n) : batch_scatter<true, false>(n);
-    else evflag ? batch_scatter<false, true>(n) : batch_scatter<false, false>(n);
+    if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
+    else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
 
   // values are read into locals before the batch stores (which may alias atom arrays)
-  constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;
   int n = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    const double xi0 = x[i][0], xi1 = x[i][1], xi2 = x[i][2];
-    const double vi0 = v[i][0], vi1 = v[i][1], vi2 = v[i][2];
-    const double wi0 = omega[i][0], wi1 = omega[i][1], wi2 = omega[i][2];
+    const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+    const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
+    const double wi0 = omega[3 * i], wi1 = omega[3 * i + 1], wi2 = omega[3 * i + 2];
     const double radi = radius[i], mi = rmass[i];
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
@@ -427,7 +431,7 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
       j &= NEIGHMASK;
       if (factor_lj == 0.0) continue;
 
-      const double *xj = x[j];
+      const double *xj = &x[3 * j];
       const double dx0 = xi0 - xj[0], dx1 = xi1 - xj[1], dx2 = xi2 - xj[2];
       const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
       const double radj = radius[j];
@@ -442,7 +446,7 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
       }
       touch[jj] = 1;
 
-      const double *vj = v[j], *wj = omega[j];
+      const double *vj = &v[3 * j], *wj = &omega[3 * j];
       const double vr0 = vi0 - vj[0], vr1 = vi1 - vj[1], vr2 = vi2 - vj[2];
       const double wj0 = wj[0], wj1 = wj[1], wj2 = wj[2];
       const double mj = rmass[j];
@@ -458,8 +462,6 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
       b.dx[0][n] = dx0;
       b.dx[1][n] = dx1;
       b.dx[2][n] = dx2;
-      b.rsq[n] = rsq;
-      b.radsum[n] = radsum;
       b.radi[n] = radi;
       b.radj[n] = radj;
       b.mi[n] = mi;
@@ -489,31 +491,30 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
    pass 3: forces, torques and history back, in neighbor-list order
 ------------------------------------------------------------------------- */
 
-template <bool NEWTON, bool EVFLAG> void PairGranHertzRolling::batch_scatter(int n)
+template <int NH, int NEWTON, int EVFLAG> void PairGranHertzRolling::batch_scatter(int n)
 {
   const Batch &b = *batch;
-  double **f = atom->f;
-  double **torque = atom->torque;
+  double *f = atom->f[0];
+  double *torque = atom->torque[0];
   const int nlocal = atom->nlocal;
-  const int nh = size_history;
   for (int l = 0; l < n; l++) {
     const int i = b.i[l], j = b.j[l];
-    f[i][0] += b.f[0][l];
-    f[i][1] += b.f[1][l];
-    f[i][2] += b.f[2][l];
-    torque[i][0] += b.ti[0][l];
-    torque[i][1] += b.ti[1][l];
-    torque[i][2] += b.ti[2][l];
+    f[3 * i] += b.f[0][l];
+    f[3 * i + 1] += b.f[1][l];
+    f[3 * i + 2] += b.f[2][l];
+    torque[3 * i] += b.ti[0][l];
+    torque[3 * i + 1] += b.ti[1][l];
+    torque[3 * i + 2] += b.ti[2][l];
     if (NEWTON || j < nlocal) {
-      f[j][0] -= b.f[0][l];
-      f[j][1] -= b.f[1][l];
-      f[j][2] -= b.f[2][l];
-      torque[j][0] += b.tj[0][l];
-      torque[j][1] += b.tj[1][l];
-      torque[j][2] += b.tj[2][l];
+      f[3 * j] -= b.f[0][l];
+      f[3 * j + 1] -= b.f[1][l];
+      f[3 * j + 2] -= b.f[2][l];
+      torque[3 * j] += b.tj[0][l];
+      torque[3 * j + 1] += b.tj[1][l];
+      torque[3 * j + 2] += b.tj[2][l];
     }
     double *hist = b.hist[l];
-    for (int k = 0; k < nh; k++) hist[k] = b.h[k][l];
+    for (int k = 0; k < NH; k++) hist[k] = b.h[k][l];
     if (EVFLAG)
       ev_tally_xyz(i, j, nlocal, NEWTON, 0.0, 0.0, b.f[0][l], b.f[1][l], b.f[2][l], b.dx[0][l],
                    b.dx[1][l], b.dx[2][l]);

@@ -53,7 +53,7 @@ class PairGranHertzRolling : public Pair {
     int i[N], j[N];
     double *hist[N];
     const tbags::contact::Params *p[N];
-    double dx[3][N], rsq[N], radsum[N], radi[N], radj[N], mi[N], mj[N], frz[N], factor[N];
+    double dx[3][N], radi[N], radj[N], mi[N], mj[N], frz[N], factor[N];
     double vr[3][N], wi[3][N], wj[3][N], h[6][N];
     double f[3][N], ti[3][N], tj[3][N];
   };
@@ -82,7 +82,7 @@ class PairGranHertzRolling : public Pair {
   void allocate();
   template <int ROLL, bool UPDATE> void eval();
   bool simd_avx2;    // the CPU runs the AVX2 build of the batch law
-  template <bool NEWTON, bool EVFLAG> void batch_scatter(int n);
+  template <int NH, int NEWTON, int EVFLAG> __attribute__((noinline)) void batch_scatter(int n);
   // geometry and kinematics of the pair i-j for the law (dx = x_i - x_j, already computed);
   // m* is the other particle's mass when one of them is frozen (fix freeze)
   void set_contact(int i, int j, double *dx, double rsq, double radsum,
