@@ -5,6 +5,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from cycler import cycler  # noqa: E402
 
 PAPER = {
     "font.family": "serif",
@@ -21,6 +22,9 @@ PAPER = {
     "lines.linewidth": 1.2,
     "savefig.dpi": 200,
     "savefig.bbox": "tight",
+    # curves told apart in black and white too (the three loads of the paper)
+    "axes.prop_cycle": cycler(color=["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b"],
+                              linestyle=["-", "--", "-.", ":", "-", "--"]),
 }
 plt.rcParams.update(PAPER)
 
