@@ -23,8 +23,8 @@ Writes, for each RUN_DIR, into RUN_DIR/figures (or OUTDIR/<run name> with -o):
   summary.txt          the numbers behind the figures (also printed)
 with several RUN_DIRs also shear-overlay.png (all runs' S-u and w-u) into OUTDIR (default: the
 runs' common parent folder). With --vtk, RUN_DIR/paraview (or OUTDIR/<run name>/paraview):
-particles_<step>.vtu, contacts_<step>.vtp, bonds_<step>.vtp and particles/contacts/bonds.pvd
-(time value = u in mm).
+particles_<step>.vtu, contacts_<step>.vtp, bonds_<step>.vtp, plates_<step>.vtp and
+particles/contacts/bonds/plates.pvd (time value = u in mm).
 A triaxial RUN_DIR (a CSV with eps_a_pct, ... from in.triax, no shear.csv) gets triax.png:
 sigma1/sigma3 and eps_v against eps_a; several of them also triax-overlay.png.
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.

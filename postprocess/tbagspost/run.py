@@ -47,6 +47,7 @@ class Run:
             fail("no run directory %s" % self.path)
         self._dt = dt
         self._csv = None
+        self._grains = {}   # the last grains dump read (figures and VTK of one step share it)
 
     @property
     def name(self):
@@ -115,7 +116,10 @@ class Run:
         return steps[int(np.argmin(np.abs(us - u_mm)))]
 
     def grains(self, step):
-        return dumps.read_grains(self.dump("grains", step))
+        """Particles of a dump step (the last one read is kept: treat it as read-only)."""
+        if step not in self._grains:
+            self._grains = {step: dumps.read_grains(self.dump("grains", step))}
+        return self._grains[step]
 
     def contacts(self, step):
         return dumps.read_contacts(self.dump("contacts", step))

@@ -6,7 +6,9 @@ For every dump step, in OUTDIR (default RUN/paraview):
   contacts_<step>.vtp   one line per contact between the particle centres; cell data: fn (N),
                         ft (tangential force vector, N), kind (0 bag-bag, 1 bag-sand, 2 sand-sand)
   bonds_<step>.vtp      one line per bag bond; cell data: tension (N, > 0 pulls), strain, btype
-and particles.pvd, contacts.pvd, bonds.pvd: the series with the shear displacement u in mm as
+  plates_<step>.vtp     the bottom and top plates as two rectangles over the particles' extent
+                        (the top at the CSV's zplate), to see the top surface detach
+and particles.pvd, contacts.pvd, bonds.pvd, plates.pvd: the series with the shear displacement u in mm as
 the time value (ParaView's time slider then reads u). In ParaView: open a .pvd, apply the
 Glyph filter (Sphere, scale by radius, factor 2) to particles; colour contacts by fn.
 """
@@ -16,10 +18,10 @@ from pathlib import Path
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
 from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import VTK_LINE, VTK_VERTEX, vtkCellArray, vtkPolyData, vtkUnstructuredGrid
+from vtkmodules.vtkCommonDataModel import VTK_VERTEX, vtkCellArray, vtkPolyData, vtkUnstructuredGrid
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter, vtkXMLUnstructuredGridWriter
 
-from tbagspost import fail, network
+from tbagspost import fail, network, section
 from tbagspost.progress import Progress
 
 KIND_CODE = {"bag-bag": 0, "bag-sand": 1, "sand-sand": 2}
@@ -96,6 +98,19 @@ def bonds(g, b, path):
     return lines(g, b["id1"], b["id2"], data, path)
 
 
+def plates(g, z_top, path):
+    """The bottom plate (z = -s/2) and, if known, the top plate (z_top) as rectangles (.vtp)
+    covering the particles' extent in x and y plus one grid spacing."""
+    lo, hi = g.pos[:, :2].min(axis=0) - section.S, g.pos[:, :2].max(axis=0) + section.S
+    levels = [section.Z_BOTTOM] + ([z_top] if z_top is not None else [])
+    corners = [(lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])]
+    poly = vtkPolyData()
+    poly.SetPoints(_points([(x, y, z) for z in levels for x, y in corners]))
+    poly.SetPolys(_cells(4, len(levels)))
+    poly.GetCellData().AddArray(_array(np.array(levels), "z"))
+    return _write(vtkXMLPolyDataWriter(), poly, path)
+
+
 def pvd(entries, path):
     """A ParaView collection: entries = [(time value, file name relative to path's folder)]."""
     root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
@@ -115,11 +130,12 @@ def convert(run, outdir=None):
     if not steps:
         fail("%s: no dump.grains.* files" % run.path)
     has = {kind: set(run.steps(kind)) for kind in ("contacts", "bonds")}
-    series = {"particles": [], "contacts": [], "bonds": []}
+    series = {"particles": [], "contacts": [], "bonds": [], "plates": []}
     for step in Progress(steps, "ParaView %s" % run.name):
         u = run.at_step(step)
         g = run.grains(step)
         series["particles"].append((u, particles(g, out / ("particles_%d.vtu" % step)).name))
+        series["plates"].append((u, plates(g, section.top_plate_z(run, step), out / ("plates_%d.vtp" % step)).name))
         if step in has["contacts"]:
             series["contacts"].append((u, contacts(g, run.contacts(step), out / ("contacts_%d.vtp" % step)).name))
         if step in has["bonds"]:

@@ -142,7 +142,7 @@ def test_vtk_files_read_back(run, tmp_path):
         return reader.GetOutput()
 
     pvds = vtkout.convert(run, tmp_path)
-    assert sorted(p.name for p in pvds) == ["bonds.pvd", "contacts.pvd", "particles.pvd"]
+    assert sorted(p.name for p in pvds) == ["bonds.pvd", "contacts.pvd", "particles.pvd", "plates.pvd"]
     step = last(run)
     cols, t = table(run.dump("grains", step))
     t = t[np.argsort(t[:, 0])]
@@ -168,6 +168,11 @@ def test_vtk_files_read_back(run, tmp_path):
     poly = read(vtkXMLPolyDataReader(), tmp_path / ("contacts_%d.vtp" % step))
     pts = vtk_to_numpy(poly.GetPoints().GetData())
     assert np.allclose(pts[0], g.pos[g.index([c["id1"][0]])][0]) and np.allclose(pts[1], g.pos[g.index([c["id2"][0]])][0])
+    # the plates: bottom at -s/2, top where the CSV puts it
+    poly = read(vtkXMLPolyDataReader(), tmp_path / ("plates_%d.vtp" % step))
+    z = vtk_to_numpy(poly.GetPoints().GetData())[:, 2]
+    assert poly.GetNumberOfPolys() == 2 and np.allclose(z[:4], section.Z_BOTTOM)
+    assert np.allclose(z[4:], run.at_step(step, "zplate_mm") / 1000)
     index = ET.parse(tmp_path / "particles.pvd").getroot().findall("Collection/DataSet")
     assert [d.get("file") for d in index] == ["particles_%d.vtu" % s for s in run.steps()]
     assert [float(d.get("timestep")) for d in index] == pytest.approx([run.at_step(s) for s in run.steps()], abs=1e-5)
