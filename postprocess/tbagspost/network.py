@@ -5,7 +5,8 @@ bag's tension pushes on the sand).
 (a) contacts whose midpoint lies in the band around the bag's mid-plane in y, as lines between
     the particle centres (projected on x-z), width and colour by the normal force: sand-sand in
     blues, bag-sand in reds (bag-bag contacts, inside the fabric, are left out);
-(b) bag bonds in the same section, width and colour by tension (slack bonds thin grey);
+(b) the bonds of the bag's central row (both ends within s/2 of the mid-plane in y), width and
+    colour by tension (slack bonds thin grey);
 (c) mean normal force against x in the section (bins of s = 5 mm), sand-sand and bag-sand.
 Edge vs centre (stats): sand-sand contacts whose midpoint is within 2 s (10 mm) of the bag's
 lateral boundary in plan (its current x and y extent) are "edge", the rest "centre"; the means are
