@@ -395,13 +395,17 @@ def summarise(prm, runs, data):
         tot.append(j)
         ev = c["eps_v_pct"]
         kmax = int(np.argmax(ev))
+        lateral = np.column_stack([c[n] for n in ("sxlo_Pa", "sxhi_Pa", "sylo_Pa", "syhi_Pa")])[1:]
+        lat_err = np.abs(lateral / (p * 1e6) - 1)
         row.update({
             "J_%g" % p: j, "Jratio_%g" % p: jr, "Jvol_%g" % p: jv,
             "peak_sim_%g" % p: float(c["ratio"].max()),
             "peak_data_%g" % p: float(data[p][1][:, 1].max()),
             "contract_dilate_%g" % p: bool(ev[kmax] > 0 and ev[-1] < ev[kmax] - 0.1),
             "e0_%g" % p: rec["e0"], "I_%g" % p: rec["inertial"],
-            "wallerr_%g" % p: rec["wall_err_max"], "seconds_%g" % p: rec["seconds"]})
+            "wallerr_%g" % p: rec["wall_err_max"], "seconds_%g" % p: rec["seconds"],
+            "shearwall_max_%g" % p: float(lat_err.max()), "shearwall_mean_%g" % p: float(lat_err.mean()),
+            "Z_end_%g" % p: float(c["Z"][-1])})
     row["J"] = float(np.mean(tot))
     return row
 
@@ -481,7 +485,8 @@ def write_report(cal, data, rows, out_dir):
         ps = a.pressures
         cols = ["n", "mu", "mur", "E", "J"] + [c % p for p in ps for c in
                                                 ("J_%g", "Jratio_%g", "Jvol_%g", "peak_sim_%g", "peak_data_%g",
-                                                 "contract_dilate_%g", "e0_%g", "I_%g", "wallerr_%g", "seconds_%g")]
+                                                 "contract_dilate_%g", "e0_%g", "I_%g", "wallerr_%g", "shearwall_mean_%g",
+                                                 "shearwall_max_%g", "Z_end_%g", "seconds_%g")]
         with open(tmp / "runs.csv", "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(cols)
@@ -505,6 +510,11 @@ def write_report(cal, data, rows, out_dir):
         for p in ps:
             if data[p][2]:
                 L.append("- %s\n" % data[p][2])
+        for E in sorted({r["E"] for r in (paper, best)}):
+            L.append("Samples (E = %.3g GPa, N grains as in in.triax_prep): %s.\n" % (E / 1e9, "; ".join(
+                "%g MPa: void ratio %.4f at mu_prep %.4f (%d preparation%s)" % (
+                    p, pr["e"], pr["mu_prep"], len(pr["tries"]), "s" if len(pr["tries"]) > 1 else "")
+                for p in ps for pr in [cal.prep_cache.get(cal.prep_key(p, E))] if pr)))
         L.append("\n## Start (paper) and best parameters\n")
         L.append("| set | mu | mu_r | E (GPa) | J | " + " | ".join("J %g MPa" % p for p in ps) + " | "
                  + " | ".join("peak ratio %g MPa sim/data" % p for p in ps) + " | contracts then dilates |")
@@ -520,15 +530,17 @@ def write_report(cal, data, rows, out_dir):
                 ", ".join("yes" if r["contract_dilate_%g" % p] else "no" for p in ps)))
         L.append("\n## All evaluations\n")
         L.append("| n | mu | mu_r | E (GPa) | J | " + " | ".join("J %g (ratio, vol)" % p for p in ps)
-                 + " | void ratio | max wall error | I |")
-        L.append("|---" * (8 + len(ps)) + "|")
+                 + " | void ratio | wall error: consolidated; shearing mean, max | I | run time (s) |")
+        L.append("|---" * (9 + len(ps)) + "|")
         for r in rows:
-            L.append("| %d | %.4g | %.4g | %.3g | %.4f | %s | %s | %s | %s |" % (
+            L.append("| %d | %.4g | %.4g | %.3g | %.4f | %s | %s | %s | %s | %s |" % (
                 r["n"], r["mu"], r["mur"], r["E"] / 1e9, r["J"],
                 " | ".join("%.4f (%.4f, %.4f)" % (r["J_%g" % p], r["Jratio_%g" % p], r["Jvol_%g" % p]) for p in ps),
                 ", ".join("%.4f" % r["e0_%g" % p] for p in ps),
-                ", ".join("%.2f %%" % (100 * r["wallerr_%g" % p]) for p in ps),
-                ", ".join("%.2g" % r["I_%g" % p] for p in ps)))
+                "; ".join("%.2f; %.2f, %.2f %%" % (100 * r["wallerr_%g" % p], 100 * r["shearwall_mean_%g" % p],
+                                                    100 * r["shearwall_max_%g" % p]) for p in ps),
+                ", ".join("%.2g" % r["I_%g" % p] for p in ps),
+                ", ".join("%.0f" % r["seconds_%g" % p] for p in ps)))
         L.append("\nFiles: runs.csv (this table, all columns), curve_start_*.csv and curve_best_*.csv "
                  "(the deck's CSV), triaxial.png (figure).\n")
         (tmp / "report.md").write_text("\n".join(L))

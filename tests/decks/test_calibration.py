@@ -1,0 +1,146 @@
+"""Triaxial calibration (calibration/): the cell reaches and holds the confining stress on every
+wall, the misfit is zero on the data itself, fit.py runs end to end on a tiny sample with a
+2-evaluation budget, and bad input gives a clear message naming the option with no report left.
+
+Tiny sample: a 25 x 25 x 50 mm cell (260 grains of the ten sand sizes); its walls loosen the
+packing, so it is prepared at void ratio 0.80 +/- 0.03 rather than the 0.68 of the real cell."""
+import importlib.util
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import lmprun
+
+CAL = lmprun.ROOT / "calibration"
+SIGMA3 = 2e5
+TINY = {"W": 0.025, "H": 0.05}
+TINY_ARGS = ["--width", "0.025", "--height", "0.05", "--void-ratio", "0.8", "--e-tol", "0.03",
+             "--strain", "0.02", "--jobs", "1"]
+
+
+def load_fit():
+    spec = importlib.util.spec_from_file_location("fit", CAL / "fit.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@pytest.fixture(scope="module")
+def cell(tmp_path_factory):
+    """A tiny sample consolidated at 0.2 MPa and sheared to 3 % axial strain."""
+    d = tmp_path_factory.mktemp("cell")
+    common = dict(TINY, tbags=lmprun.ROOT, sigma3=SIGMA3)
+    prep = lmprun.run(CAL / "in.triax_prep", d, variables=dict(common, mu_prep=0.15, out="p.restart")).check()
+    (d / "prep.out").write_text(prep.output)
+    res = lmprun.run(CAL / "in.triax", d, variables=dict(common, prep="p.restart", strain=0.03)).check()
+    return d, res.output
+
+
+def test_cell_reaches_the_confining_stress_on_every_wall(cell):
+    _, out = cell
+    walls = [float(x) for x in [l for l in out.splitlines() if l.startswith("WALLS:")][0].split()[1:]]
+    print("wall stresses after consolidation (Pa):", walls)
+    assert len(walls) == 6
+    for s in walls:
+        assert abs(s / SIGMA3 - 1) < 0.01
+
+
+def test_lateral_walls_hold_the_confining_stress_while_the_axial_walls_move(cell):
+    d, out = cell
+    a = np.loadtxt(d / "triax.csv", delimiter=",", comments="#", skiprows=1)
+    lateral = a[1:, 10:14] / SIGMA3 - 1          # sxlo sxhi sylo syhi, every 0.1 % of axial strain
+    print("lateral wall stress error: max %.3f %%, mean %.3f %%; axial strain %.2f %%, ratio %.3f"
+          % (100 * np.abs(lateral).max(), 100 * np.abs(lateral).mean(), a[-1, 0], a[:, 3].max()))
+    assert a[-1, 0] > 2.9                          # the axial walls moved (3 % strain)
+    assert a[:, 3].max() > 1.3                     # and loaded the sample
+    assert np.abs(lateral).mean() < 0.01           # the servo holds sigma3 within 1 % on average
+    assert np.abs(lateral).max() < 0.03            # and within 3 % at every output
+    assert "inertial number 1.000e-03" not in out  # deck default is I = 5e-4
+    assert "inertial number 5.000e-04" in out
+
+
+def test_misfit_is_zero_on_the_data_itself():
+    fit = load_fit()
+    data = fit.load_data(CAL / "data", [0.5])[0.5][1]
+    curve = {"eps_a_pct": data[:, 0], "ratio": data[:, 1], "eps_v_pct": data[:, 2]}
+    assert fit.misfit_one(curve, data)[0] == pytest.approx(0.0, abs=1e-12)
+    curve["ratio"] = data[:, 1] * 1.1
+    assert fit.misfit_one(curve, data)[0] > 0.01
+
+
+def run_fit(args, tmp_path, env=None):
+    e = dict(os.environ)
+    e.update(env or {})
+    cmd = [sys.executable, str(CAL / "fit.py"), "--workdir", str(tmp_path / "work"),
+           "--out", str(tmp_path / "report")] + args
+    return subprocess.run(cmd, capture_output=True, text=True, env=e, cwd=tmp_path)
+
+
+def test_fit_runs_end_to_end_on_a_tiny_sample(tmp_path):
+    # 0.3 MPa is not in the data: the fit runs and says which curve it compares with
+    res = run_fit(TINY_ARGS + ["--pressures", "0.3", "--budget", "2", "--grid-mu", "0.5",
+                               "--grid-mur", "0.1"], tmp_path)
+    print(res.stdout[-3000:], res.stderr[-3000:])
+    assert res.returncode == 0
+    assert "no data at sigma3 = 0.3 MPa: compared with the nearest curve, Test_0.2.data" in res.stdout
+    rep = tmp_path / "report"
+    text = (rep / "report.md").read_text()
+    assert "Test_0.2.data" in text and "| best |" in text
+    rows = (rep / "runs.csv").read_text().splitlines()
+    assert len(rows) == 3                          # header + 2 evaluations
+    assert (rep / "triaxial.png").stat().st_size > 10000
+    # resumable: a second call finds both evaluations in the cache and runs no deck
+    again = run_fit(TINY_ARGS + ["--pressures", "0.3", "--budget", "2", "--grid-mu", "0.5",
+                                 "--grid-mur", "0.1"], tmp_path)
+    assert again.returncode == 0 and "run mu" not in again.stdout and "sample" not in again.stdout
+
+
+def no_report(tmp_path):
+    return not (tmp_path / "report").exists() or not any((tmp_path / "report").iterdir())
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--mu", "-0.1"], "--mu -0.1: sliding friction must be in [0, 1.5]"),
+    (["--mur", "0.9"], "--mur 0.9: rolling friction (dimensionless) must be in [0, 0.5]"),
+    (["--E", "0"], "--E 0: grain Young's modulus (Pa) must be in"),
+    (["--pressures", "0.2,-1"], "--pressures 0.2,-1.0: each confining stress must be in (0, 50] MPa"),
+    (["--void-ratio", "2"], "--void-ratio 2: void ratio must be in"),
+    (["--fit", "mu,k"], "--fit mu,k: choose among mu, mur, E"),
+])
+def test_parameter_outside_its_range(tmp_path, args, message):
+    res = run_fit(TINY_ARGS + args, tmp_path)
+    assert res.returncode == 2
+    assert message in res.stderr, res.stderr
+    assert no_report(tmp_path)
+
+
+def test_missing_data_file(tmp_path):
+    data = tmp_path / "data"
+    shutil.copytree(CAL / "data", data)
+    (data / "Test_0.5.data").unlink()
+    res = run_fit(TINY_ARGS + ["--data", str(data)], tmp_path)
+    assert res.returncode == 2
+    assert "--data %s: data file Test_0.5.data (sigma3 0.5 MPa, listed in manifest.csv) is missing" % data \
+        in res.stderr, res.stderr
+    assert no_report(tmp_path)
+
+
+def test_sample_that_cannot_reach_the_void_ratio(tmp_path):
+    args = [a for a in TINY_ARGS]
+    args[args.index("--void-ratio") + 1] = "0.5"
+    res = run_fit(args + ["--pressures", "0.2", "--budget", "1"], tmp_path)
+    print(res.stdout, res.stderr)
+    assert res.returncode == 2
+    assert "--void-ratio 0.5: the sample cannot reach this void ratio at 0.2 MPa" in res.stderr
+    assert no_report(tmp_path)
+
+
+def test_lammps_not_found(tmp_path):
+    res = run_fit(TINY_ARGS, tmp_path, env={"TBAGS_LMP": ""})
+    assert res.returncode == 2
+    assert "TBAGS_LMP is not set" in res.stderr
+    assert no_report(tmp_path)
