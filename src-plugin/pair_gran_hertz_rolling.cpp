@@ -21,6 +21,7 @@
 #include "update.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 // the batch law is also built for AVX2 and picked at run time (GCC and Clang on x86-64)
@@ -39,7 +40,8 @@ PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
-  simd_avx2 = __builtin_cpu_supports("avx2");
+  // TBAGS_NO_AVX2 in the environment: the baseline build (tests check both give the same bits)
+  simd_avx2 = __builtin_cpu_supports("avx2") && !getenv("TBAGS_NO_AVX2");
 #else
   simd_avx2 = false;
 #endif
