@@ -2,12 +2,18 @@
 """Pair benchmark: tbags gran/hertz/rolling against stock pair granular (hertz/material, mindlin,
 coeff_restitution, rolling sds) on the same dense polydisperse MODEL.md sand packing, in one
 invocation, serial and on 2 ranks. Prints ns per contact per step (pair time) and the ratio.
+Both styles run the same deck (same neighbor settings: the runs report their neighbor list
+builds, none in 1000 steps by default), so only pair compute() differs.
 
-usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2]
+--callgrind S: instead, count instructions (valgrind callgrind, 1 rank, S steps) in pair
+compute() per contact-step: independent of machine load, for comparing kernels.
+
+usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2] [--callgrind S]
 """
 import argparse
 import os
 import re
+import subprocess
 import sys
 from pathlib import Path
 
@@ -33,8 +39,29 @@ def run_one(lines, data, rep, steps, ranks, wd):
     loop = float(re.search(r"Loop time of (\S+)", out).group(1))
     contacts = float(re.search(r"^CONTACTS (\S+)", out, re.M).group(1))
     atoms = int(re.search(r"for \d+ steps with (\d+) atoms", out).group(1))
-    return dict(pair=pair, loop=loop, contacts=contacts, atoms=atoms,
+    builds = int(re.search(r"Neighbor list builds = (\d+)", out).group(1))
+    return dict(pair=pair, loop=loop, contacts=contacts, atoms=atoms, builds=builds,
                 ns=pair / steps / contacts * 1e9 * ranks)
+
+
+def callgrind_one(lines, data, rep, steps, wd):
+    """Instructions in pair compute() (inclusive) per contact-step, from callgrind."""
+    wd.mkdir(parents=True, exist_ok=True)
+    deck = (ROOT / "bench" / "in.bench_pair").read_text().replace("PAIR_LINES", "\n".join(lines))
+    (wd / "in.bench").write_text(deck)
+    out = wd / "callgrind.out"
+    cmd = ["valgrind", "--tool=callgrind", "--callgrind-out-file=%s" % out, lmprun.LMP, "-nocite",
+           "-log", "none", "-in", "in.bench", "-var", "data", str(data), "-var", "rep", str(rep),
+           "-var", "nsteps", str(steps)]
+    res = subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=7200)
+    if res.returncode != 0:
+        raise RuntimeError(res.stdout[-2000:] + res.stderr[-2000:])
+    contacts = float(re.search(r"^CONTACTS (\S+)", res.stdout, re.M).group(1))
+    ann = subprocess.run(["callgrind_annotate", "--inclusive=yes", str(out)], capture_output=True,
+                         text=True).stdout
+    ir = max(int(m.group(1).replace(",", "")) for m in re.finditer(
+        r"^\s*([\d,]+) .*(?:PairGranHertzRolling|PairGranular)::compute\(int, int\)", ann, re.M))
+    return ir / ((steps + 1) * contacts), contacts    # steps + the set-up call
 
 
 def main():
@@ -44,6 +71,8 @@ def main():
     ap.add_argument("--steps", type=int, default=1000)
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--phi", type=float, default=0.66)
+    ap.add_argument("--callgrind", type=int, default=0, metavar="S",
+                    help="instructions per contact-step over S steps instead of timings")
     args = ap.parse_args()
     wd = ROOT / "runs" / "bench"
     wd.mkdir(parents=True, exist_ok=True)
@@ -54,13 +83,24 @@ def main():
         made = packing.make(wd / "packing", n=args.atoms_per_cell, phi=args.phi, L0=L0,
                             ncompress=20000, np_ranks=2)
         made.rename(data)
-    print("%-6s %-22s %8s %10s %12s %14s" % ("ranks", "style", "atoms", "contacts", "pair time s", "ns/contact/step"))
+    styles = (("tbags gran/hertz/rolling", OURS), ("stock granular", STOCK))
+    if args.callgrind:
+        r = {}
+        for name, lines in styles:
+            r[name], c = callgrind_one(lines, data, args.rep, args.callgrind, wd / ("cg-" + name.split()[0]))
+            print("%-24s %10.0f contacts %8.1f instructions per contact-step in pair compute()"
+                  % (name, c, r[name]), flush=True)
+        print("stock / tbags: %.2fx" % (r["stock granular"] / r["tbags gran/hertz/rolling"]))
+        return
+    print("%-6s %-22s %8s %10s %12s %14s %8s" % ("ranks", "style", "atoms", "contacts", "pair time s",
+                                                 "ns/contact/step", "nbuilds"))
     for ranks in [int(r) for r in args.ranks.split(",")]:
         r = {}
-        for name, lines in (("tbags gran/hertz/rolling", OURS), ("stock granular", STOCK)):
+        for name, lines in styles:
             r[name] = run_one(lines, data, args.rep, args.steps, ranks, wd / name.split()[0])
             x = r[name]
-            print("%-6d %-22s %8d %10.0f %12.3f %14.1f" % (ranks, name, x["atoms"], x["contacts"], x["pair"], x["ns"]), flush=True)
+            print("%-6d %-22s %8d %10.0f %12.3f %14.1f %8d" % (ranks, name, x["atoms"], x["contacts"],
+                                                             x["pair"], x["ns"], x["builds"]), flush=True)
         ratio = r["stock granular"]["ns"] / r["tbags gran/hertz/rolling"]["ns"]
         print("%-6d speed-up of tbags over stock (pair time per contact-step): %.2fx" % (ranks, ratio))
 
