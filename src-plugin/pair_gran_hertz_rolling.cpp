@@ -301,8 +301,9 @@ double PairGranHertzRolling::init_one(int i, int j)
 namespace {
 using Batch = PairGranHertzRolling::Batch;
 
-template <int ROLL, bool UPDATE>
-TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip)
+// UNI: one set of constants for all lanes (one atom type), pu, instead of one per lane
+template <int ROLL, bool UPDATE, bool UNI>
+TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
   using tbags::vec::V3;
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
@@ -321,7 +322,7 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip)
     V3 hr{0.0, 0.0, 0.0};
     if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
     law::LaneOut o;
-    law::contact_lane<ROLL, UPDATE>(*b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, radi * radj / radsum, meff, radi, radj,
+    law::contact_lane<ROLL, UPDATE>(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, radi * radj / radsum, meff, radi, radj,
                                     V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
                                     V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
                                     V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, false, dt, ht, hr, o);
@@ -346,25 +347,33 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip)
   }
 }
 
-template <int ROLL, bool UPDATE> void law_lanes_base(Batch &b, int n, double dt, bool clip)
+template <int ROLL, bool UPDATE, bool UNI>
+void law_lanes_base(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
-  law_lanes<ROLL, UPDATE>(b, n, dt, clip);
+  law_lanes<ROLL, UPDATE, UNI>(b, n, dt, clip, pu);
 }
 
 #ifdef TBAGS_HAVE_AVX2_CLONE
+template <int ROLL, bool UPDATE, bool UNI>
+__attribute__((target("avx2"))) void law_lanes_avx2(Batch &b, int n, double dt, bool clip,
+                                                    const law::Params *pu)
+{
+  law_lanes<ROLL, UPDATE, UNI>(b, n, dt, clip, pu);
+}
+#endif
+
+// pu: the constants when there is one atom type, else nullptr (per-lane b.p)
 template <int ROLL, bool UPDATE>
-__attribute__((target("avx2"))) void law_lanes_avx2(Batch &b, int n, double dt, bool clip)
-{
-  law_lanes<ROLL, UPDATE>(b, n, dt, clip);
-}
-#endif
-
-template <int ROLL, bool UPDATE> void batch_law(Batch &b, int n, double dt, bool clip, bool avx2)
+void batch_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Params *pu)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
-  if (avx2) return law_lanes_avx2<ROLL, UPDATE>(b, n, dt, clip);
+  if (avx2) {
+    if (pu) return law_lanes_avx2<ROLL, UPDATE, true>(b, n, dt, clip, pu);
+    return law_lanes_avx2<ROLL, UPDATE, false>(b, n, dt, clip, pu);
+  }
 #endif
-  law_lanes_base<ROLL, UPDATE>(b, n, dt, clip);
+  if (pu) return law_lanes_base<ROLL, UPDATE, true>(b, n, dt, clip, pu);
+  law_lanes_base<ROLL, UPDATE, false>(b, n, dt, clip, pu);
 }
 }    // namespace
 
@@ -376,6 +385,24 @@ void PairGranHertzRolling::compute(int eflag, int vflag)
   if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true>() : eval<law::ROLLING_EPSD, false>();
   else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true>() : eval<law::ROLLING_CDT, false>();
   else upd ? eval<law::ROLLING_NONE, true>() : eval<law::ROLLING_NONE, false>();
+}
+
+/* ----------------------------------------------------------------------
+   the constants of all type pairs when they are all the same (e.g. pair_coeff * *), else null
+------------------------------------------------------------------------- */
+
+const law::Params *PairGranHertzRolling::uniform_params() const
+{
+  const law::Params &p = law[ntypes1 + 1];
+  for (int i = 1; i < ntypes1; i++)
+    for (int j = 1; j < ntypes1; j++) {
+      const law::Params &q = law[i * ntypes1 + j];
+      if (q.kn != p.kn || q.kt != p.kt || q.cn != p.cn || q.ct != p.ct || q.mu != p.mu ||
+          q.mur != p.mur || q.krs != p.krs || q.rolling != p.rolling ||
+          q.limit_damping != p.limit_damping)
+        return nullptr;
+    }
+  return &p;
 }
 
 /* ----------------------------------------------------------------------
@@ -406,8 +433,9 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
   double **firsthistory = fix_history->firstvalue;
 
   constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
+  const law::Params *puni = uniform_params();
   auto flush = [&](int n) {
-    batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2);
+    batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2, puni);
     if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
     else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
@@ -499,27 +527,40 @@ template <int NH, int NEWTON, int EVFLAG> void PairGranHertzRolling::batch_scatt
   double *f = atom->f[0];
   double *torque = atom->torque[0];
   const int nlocal = atom->nlocal;
-  for (int l = 0; l < n; l++) {
-    const int i = b.i[l], j = b.j[l];
-    f[3 * i] += b.f[0][l];
-    f[3 * i + 1] += b.f[1][l];
-    f[3 * i + 2] += b.f[2][l];
-    torque[3 * i] += b.ti[0][l];
-    torque[3 * i + 1] += b.ti[1][l];
-    torque[3 * i + 2] += b.ti[2][l];
-    if (NEWTON || j < nlocal) {
-      f[3 * j] -= b.f[0][l];
-      f[3 * j + 1] -= b.f[1][l];
-      f[3 * j + 2] -= b.f[2][l];
-      torque[3 * j] += b.tj[0][l];
-      torque[3 * j + 1] += b.tj[1][l];
-      torque[3 * j + 2] += b.tj[2][l];
+  // f and torque of i summed in registers over its run of contacts: the same additions in the
+  // same order as updating the arrays each time (j is never i)
+  for (int l = 0; l < n;) {
+    const int i = b.i[l];
+    double fi0 = f[3 * i], fi1 = f[3 * i + 1], fi2 = f[3 * i + 2];
+    double ti0 = torque[3 * i], ti1 = torque[3 * i + 1], ti2 = torque[3 * i + 2];
+    for (; l < n && b.i[l] == i; l++) {
+      const int j = b.j[l];
+      fi0 += b.f[0][l];
+      fi1 += b.f[1][l];
+      fi2 += b.f[2][l];
+      ti0 += b.ti[0][l];
+      ti1 += b.ti[1][l];
+      ti2 += b.ti[2][l];
+      if (NEWTON || j < nlocal) {
+        f[3 * j] -= b.f[0][l];
+        f[3 * j + 1] -= b.f[1][l];
+        f[3 * j + 2] -= b.f[2][l];
+        torque[3 * j] += b.tj[0][l];
+        torque[3 * j + 1] += b.tj[1][l];
+        torque[3 * j + 2] += b.tj[2][l];
+      }
+      double *hist = b.hist[l];
+      for (int k = 0; k < NH; k++) hist[k] = b.h[k][l];
+      if (EVFLAG)
+        ev_tally_xyz(i, j, nlocal, NEWTON, 0.0, 0.0, b.f[0][l], b.f[1][l], b.f[2][l], b.dx[0][l],
+                     b.dx[1][l], b.dx[2][l]);
     }
-    double *hist = b.hist[l];
-    for (int k = 0; k < NH; k++) hist[k] = b.h[k][l];
-    if (EVFLAG)
-      ev_tally_xyz(i, j, nlocal, NEWTON, 0.0, 0.0, b.f[0][l], b.f[1][l], b.f[2][l], b.dx[0][l],
-                   b.dx[1][l], b.dx[2][l]);
+    f[3 * i] = fi0;
+    f[3 * i + 1] = fi1;
+    f[3 * i + 2] = fi2;
+    torque[3 * i] = ti0;
+    torque[3 * i + 1] = ti1;
+    torque[3 * i + 2] = ti2;
   }
 }
 

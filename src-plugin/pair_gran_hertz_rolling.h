@@ -82,6 +82,7 @@ class PairGranHertzRolling : public Pair {
   void allocate();
   template <int ROLL, bool UPDATE> void eval();
   bool simd_avx2;    // the CPU runs the AVX2 build of the batch law
+  const tbags::contact::Params *uniform_params() const;
   template <int NH, int NEWTON, int EVFLAG> __attribute__((noinline)) void batch_scatter(int n);
   // geometry and kinematics of the pair i-j for the law (dx = x_i - x_j, already computed);
   // m* is the other particle's mass when one of them is frozen (fix freeze)
