@@ -296,3 +296,32 @@ TEST(Wall, InfiniteRadiusAndMass)
   expect_rel(o.fne, 4.0 / 3.0 * Es * std::sqrt(ri) * std::pow(o.delta, 1.5));
   expect_rel(o.ti[1], -ri * o.fs[0]);
 }
+
+// The by-value helpers of the branch-free lane law give the same bits as the pointer ones.
+TEST(ContactLaw, ValueHelpersMatchPointerHelpers)
+{
+  using namespace tbags::vec;
+  const double n0[3] = {0.3, -0.5, 0.8};
+  const double s = 1.0 / std::sqrt(dot(n0, n0));
+  const double n[3] = {n0[0] * s, n0[1] * s, n0[2] * s};
+  const double cases[][3] = {{1e-5, 2e-6, -3e-6}, {0.0, 0.0, 0.0}, {n[0], n[1], n[2]},
+                             {-4e-7, 9e-7, 1e-8}};
+  for (const auto &c : cases) {
+    double a[3] = {c[0], c[1], c[2]};
+    rotate_onto_plane(a, n);
+    const V3 b = onto_plane(load3(c), load3(n));
+    EXPECT_EQ(a[0], b.x);
+    EXPECT_EQ(a[1], b.y);
+    EXPECT_EQ(a[2], b.z);
+    double x[3];
+    cross(c, n, x);
+    const V3 y = cross(load3(c), load3(n));
+    EXPECT_EQ(x[0], y.x);
+    EXPECT_EQ(x[1], y.y);
+    EXPECT_EQ(x[2], y.z);
+    EXPECT_EQ(dot(c, n), dot(load3(c), load3(n)));
+  }
+  const V3 p{1, 2, 3}, q{4, 5, 6};
+  EXPECT_EQ(select(true, p, q).y, 2.0);
+  EXPECT_EQ(select(false, p, q).y, 5.0);
+}
