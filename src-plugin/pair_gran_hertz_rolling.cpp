@@ -596,6 +596,16 @@ double PairGranHertzRolling::single(int i, int j, int itype, int jtype, double r
   if (found) {
     const double *h = &fix_history->firstvalue[i][size_history * neighprev];
     for (int k = 0; k < size_history; k++) hist[k] = h[k];
+  } else if (j < atom->nlocal) {
+    // a list of another ordering (compute pair/local's own) may name the pair the other way
+    // round: the history is then stored with j, as seen from j
+    const int knum = list->numneigh[j];
+    const int *klist = list->firstneigh[j];
+    for (int kk = 0; kk < knum; kk++)
+      if ((klist[kk] & NEIGHMASK) == i) {
+        transfer_history(&fix_history->firstvalue[j][size_history * kk], hist, 0, 0);
+        break;
+      }
   }
 
   double **x = atom->x;
