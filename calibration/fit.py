@@ -227,6 +227,14 @@ def tagged(out, tag):
     return lines[-1]
 
 
+def deck_hash(*names):
+    """Short hash of the decks a run depends on: an edited deck is not served from the cache."""
+    h = hashlib.sha256()
+    for n in names:
+        h.update((HERE / n).read_bytes())
+    return h.hexdigest()[:10]
+
+
 def fmt(x):
     return "%.6g" % x
 
@@ -268,8 +276,9 @@ class Calibration:
     # ---- samples ------------------------------------------------------------------------
     def prep_key(self, p, E):
         a = self.a
-        return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s" % (fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width),
-                                                     fmt(a.height), a.seed, fmt(a.dt))
+        return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s_deck%s" % (fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width),
+                                                            fmt(a.height), a.seed, fmt(a.dt),
+                                                            deck_hash("in.triax_prep", "cell.inc"))
 
     def sample(self, p, E):
         """Restart file of the sample at sigma3 = p MPa (void ratio within tolerance)."""
@@ -329,8 +338,9 @@ class Calibration:
     # ---- shear runs ---------------------------------------------------------------------
     def run_key(self, prm, p):
         a = self.a
-        return "%s_mu%s_mur%s_I%s_strain%s" % (self.prep_key(p, prm["E"]), fmt(prm["mu"]),
-                                               fmt(prm["mur"]), fmt(a.inertial), fmt(a.strain))
+        return "%s_mu%s_mur%s_I%s_strain%s_deck%s" % (self.prep_key(p, prm["E"]), fmt(prm["mu"]),
+                                                      fmt(prm["mur"]), fmt(a.inertial), fmt(a.strain),
+                                                      deck_hash("in.triax", "cell.inc"))
 
     def shear(self, prm, p):
         key = self.run_key(prm, p)
