@@ -41,12 +41,14 @@ def write_dumps(run, gap_mm, edge_force, centre_force):
         (5, 2, 0.002, 0.004, 0.05, 0.02, 0, 0, 0),
         (6, 2, 0.002, 0.05, 0.05, 0.02, 0, 0, 0),
         (7, 2, 0.002, 0.054, 0.05, 0.02, 0, 0, 0),
+        (8, 1, r, 0.0, 0.054, 0.0, 0, 0, 0),
     ]
     head = "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF %s\n%d\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\n"
     (run / ("dump.grains.%d" % STEP)).write_text(
         head % (STEP, "ATOMS", len(atoms)) + "ITEM: ATOMS id type radius x y z dx dy dz\n"
         + "\n".join(" ".join(str(v) for v in a) for a in atoms) + "\n")
-    contacts = [(1, 1, 5, 1, 2, 0.004, 0, 0, 0, edge_force, 1e-5), (2, 6, 7, 2, 2, 0.004, 0, 0, 0, centre_force, 1e-5)]
+    contacts = [(1, 1, 5, 1, 2, 0.004, 0, 0, 0, edge_force, 1e-5), (2, 6, 7, 2, 2, 0.004, 0, 0, 0, centre_force, 1e-5),
+                (3, 1, 8, 1, 1, 0.005, 0, 0, 0, 100.0, 1e-5)]    # bag-bag at the side: not counted
     (run / ("dump.contacts.%d" % STEP)).write_text(
         head % (STEP, "ENTRIES", len(contacts)) + "ITEM: ENTRIES index id1 id2 type1 type2 dist ftx fty ftz fn overlap\n"
         + "\n".join(" ".join(str(v) for v in c) for c in contacts) + "\n")
