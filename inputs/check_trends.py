@@ -26,6 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from tbagspost.dumps import read_contacts, read_grains    # noqa: E402  (the project's dump readers)
+
 LOADS = (5500, 3730, 1960)
 
 
@@ -37,19 +40,6 @@ def read_csv(run):
     if d.dtype.names is None or "S_N" not in d.dtype.names or len(d) < 5:
         raise SystemExit("check_trends: %s is malformed or has fewer than 5 rows" % path)
     return d
-
-
-def read_dump(path):
-    """columns of a LAMMPS text dump's last snapshot as a dict name -> array."""
-    lines = Path(path).read_text().splitlines()
-    k = max(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS") or l.startswith("ITEM: ENTRIES"))
-    names = lines[k].split()[2:]
-    n = int(lines[k - 5].split()[0]) if lines[k - 6].startswith("ITEM: NUMBER") else None
-    rows = [l.split() for l in lines[k + 1:] if l.strip()]
-    if n is not None and len(rows) != n:
-        raise SystemExit("check_trends: %s is truncated (%d of %d rows)" % (path, len(rows), n))
-    a = np.array(rows, dtype=float).reshape(-1, len(names))
-    return {c: a[:, i] for i, c in enumerate(names)}
 
 
 def last_dump(run, kind):
@@ -76,26 +66,25 @@ def w_path(d):
 def detachment(run, gap_mm=0.5):
     """fraction of the bag's top-face particles more than gap_mm below the plate at the last dump."""
     path, step = last_dump(run, "grains")
-    g = read_dump(path)
+    g = read_grains(path)
     d = read_csv(run)
     zplate = np.interp(step * timestep(run), d["time_s"], d["zplate_mm"]) / 1000
-    bag = g["type"] == 1
-    z0 = g["z"] - g["dz"]
-    top = bag & (z0 > z0[bag].max() - 1e-3)
-    gap = zplate - (g["z"][top] + g["radius"][top])
+    z = g.pos[:, 2]
+    z0 = z - g.disp[:, 2]
+    top = g.bag & (z0 > z0[g.bag].max() - 1e-3)
+    gap = zplate - (z[top] + g.radius[top])
     return float(np.mean(gap > gap_mm / 1000)), float(gap.max() * 1000), int(top.sum())
 
 
 def edge_forces(run, band=0.010):
     """mean normal force of contacts in the central y cross-section: near the sides, in the middle."""
     gpath, step = last_dump(run, "grains")
-    g = read_dump(gpath)
-    c = read_dump(Path(run) / ("dump.contacts.%d" % step))
-    pos = {int(i): (x, y) for i, x, y in zip(g["id"], g["x"], g["y"])}
-    mid = np.array([[(pos[int(a)][k] + pos[int(b)][k]) / 2 for k in (0, 1)] for a, b in zip(c["id1"], c["id2"])])
-    bag = g["type"] == 1
-    xlo, xhi = g["x"][bag].min(), g["x"][bag].max()
-    yc = 0.5 * (g["y"][bag].min() + g["y"][bag].max())
+    g = read_grains(gpath)
+    c = read_contacts(Path(run) / ("dump.contacts.%d" % step))
+    mid = 0.5 * (g.pos[g.index(c["id1"]), :2] + g.pos[g.index(c["id2"]), :2])
+    x, y = g.pos[g.bag, 0], g.pos[g.bag, 1]
+    xlo, xhi = x.min(), x.max()
+    yc = 0.5 * (y.min() + y.max())
     xc, half = 0.5 * (xlo + xhi), 0.5 * (xhi - xlo)
     # forces on sand: sand-sand and bag-sand contacts (bag-bag contacts carry the fabric's own
     # compression between neighbours, not the sand's)

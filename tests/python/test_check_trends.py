@@ -33,19 +33,19 @@ def write_dumps(run, gap_mm, edge_force, centre_force):
     d = np.genfromtxt(run / "shear.csv", delimiter=",", names=True)
     zplate = np.interp(t, d["time_s"], d["zplate_mm"]) / 1000
     r = 0.0025
-    atoms = [  # id type radius x y z dx dy dz
-        (1, 1, r, 0.0, 0.05, zplate - r, 0, 0, 0),
-        (2, 1, r, 0.1, 0.05, zplate - r - gap_mm / 1000, 0, 0, -gap_mm / 1000),
-        (3, 1, r, 0.0, 0.0, 0.0, 0, 0, 0),
-        (4, 1, r, 0.1, 0.1, 0.0, 0, 0, 0),
-        (5, 2, 0.002, 0.004, 0.05, 0.02, 0, 0, 0),
-        (6, 2, 0.002, 0.05, 0.05, 0.02, 0, 0, 0),
-        (7, 2, 0.002, 0.054, 0.05, 0.02, 0, 0, 0),
-        (8, 1, r, 0.0, 0.054, 0.0, 0, 0, 0),
+    atoms = [  # id type radius x y z vx vy vz dx dy dz
+        (1, 1, r, 0.0, 0.05, zplate - r, 0, 0, 0, 0, 0, 0),
+        (2, 1, r, 0.1, 0.05, zplate - r - gap_mm / 1000, 0, 0, 0, 0, 0, -gap_mm / 1000),
+        (3, 1, r, 0.0, 0.0, 0.0, 0, 0, 0, 0, 0, 0),
+        (4, 1, r, 0.1, 0.1, 0.0, 0, 0, 0, 0, 0, 0),
+        (5, 2, 0.002, 0.004, 0.05, 0.02, 0, 0, 0, 0, 0, 0),
+        (6, 2, 0.002, 0.05, 0.05, 0.02, 0, 0, 0, 0, 0, 0),
+        (7, 2, 0.002, 0.054, 0.05, 0.02, 0, 0, 0, 0, 0, 0),
+        (8, 1, r, 0.0, 0.054, 0.0, 0, 0, 0, 0, 0, 0),
     ]
     head = "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF %s\n%d\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\n"
     (run / ("dump.grains.%d" % STEP)).write_text(
-        head % (STEP, "ATOMS", len(atoms)) + "ITEM: ATOMS id type radius x y z dx dy dz\n"
+        head % (STEP, "ATOMS", len(atoms)) + "ITEM: ATOMS id type radius x y z vx vy vz dx dy dz\n"
         + "\n".join(" ".join(str(v) for v in a) for a in atoms) + "\n")
     contacts = [(1, 1, 5, 1, 2, 0.004, 0, 0, 0, edge_force, 1e-5), (2, 6, 7, 2, 2, 0.004, 0, 0, 0, centre_force, 1e-5),
                 (3, 1, 8, 1, 1, 0.005, 0, 0, 0, 100.0, 1e-5)]    # bag-bag at the side: not counted
