@@ -4,8 +4,13 @@ set(LAMMPS_SOURCE_DIR "" CACHE PATH "LAMMPS source tree (with src/ and cmake/) t
 set(LAMMPS_EXECUTABLE "" CACHE FILEPATH "lmp binary built from LAMMPS_SOURCE_DIR with PLUGIN GRANULAR MOLECULE BPM")
 set(LAMMPS_DIR "" CACHE PATH "LAMMPS build or install directory (holds lmp); used with LAMMPS_SOURCE_DIR")
 
-if(NOT LAMMPS_SOURCE_DIR)
+# The pinned build is looked up again at every configure (instant once cached), and a change of
+# build-lammps.sh (packages, options) re-runs the configure, so an old build directory follows it;
+# a LAMMPS_SOURCE_DIR the user gave is kept.
+if(NOT LAMMPS_SOURCE_DIR OR LAMMPS_SOURCE_DIR STREQUAL TBAGS_PINNED_SOURCE_DIR)
   # the pinned LAMMPS 4 Feb 2025 (Debian source package, sha256-verified), built once into a cache
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+    ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-lammps.sh ${CMAKE_CURRENT_SOURCE_DIR}/cmake/fetch-lammps.sh)
   set(_args "")
   if(TBAGS_SANITIZE)
     set(_args --asan)
@@ -22,6 +27,7 @@ if(NOT LAMMPS_SOURCE_DIR)
   set(LAMMPS_SOURCE_DIR "${CMAKE_MATCH_1}" CACHE PATH "" FORCE)
   string(REGEX MATCH "LAMMPS_EXECUTABLE=([^\n]*)" _m "${_out}")
   set(LAMMPS_EXECUTABLE "${CMAKE_MATCH_1}" CACHE FILEPATH "" FORCE)
+  set(TBAGS_PINNED_SOURCE_DIR "${LAMMPS_SOURCE_DIR}" CACHE INTERNAL "the pinned LAMMPS tree (not the user's)")
 endif()
 
 if(NOT EXISTS "${LAMMPS_SOURCE_DIR}/src/lammps.h")

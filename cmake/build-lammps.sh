@@ -10,8 +10,10 @@ jobs=${TBAGS_JOBS:-$(nproc)}
 san=""
 [ "${1:-}" = "--asan" ] && san="-fsanitize=address,undefined -fno-omit-frame-pointer"
 
-packages="GRANULAR MOLECULE BPM RIGID PLUGIN EXTRA-FIX OPENMP"
-opts=(-D BUILD_SHARED_LIBS=on -D BUILD_MPI=on -D BUILD_OMP=on -D LAMMPS_EXCEPTIONS=on
+# Only what the decks, tests and benchmark use: a fresh machine builds it in about half the time
+# of a build with OPENMP (232 files) and EXTRA-FIX.
+packages="GRANULAR MOLECULE BPM PLUGIN"
+opts=(-D BUILD_SHARED_LIBS=on -D BUILD_MPI=on -D BUILD_OMP=off -D LAMMPS_EXCEPTIONS=on
       -D CMAKE_BUILD_TYPE=Release -D CMAKE_CXX_COMPILER_LAUNCHER=ccache -D CMAKE_C_COMPILER_LAUNCHER=ccache)
 for p in $packages; do opts+=(-D PKG_$p=on); done
 # VTK is optional: it configures only when libvtk9-dev and the Qt5 dev packages are present.

@@ -312,8 +312,9 @@ void FixWallGranServo::init()
 void FixWallGranServo::setup(int vflag)
 {
   // a plate that starts deep inside particles would launch them: refuse. Checked once, at the
-  // first run after the fix is defined: later runs continue from states the plate produced
-  // itself or that the deck made on purpose (radii grown against the plate, a changed modulus).
+  // first run after the fix is defined, and not when its state comes from a restart file: later
+  // runs continue from states the plate produced itself or that the deck made on purpose (radii
+  // grown against the plate, a changed modulus).
   if (!placed) check_placement();
   placed = true;
   post_force(vflag);
@@ -498,6 +499,8 @@ void FixWallGranServo::restart(char *buf)
   servo.integral = list[8];
   if (target_var.empty() && mode[axis] == SERVO) target = list[9];
   nconv_count = (int) list[10];
+  // a resumed run continues from a state the plate produced itself (particles it pressed into)
+  placed = true;
 }
 
 /* ----------------------------------------------------------------------

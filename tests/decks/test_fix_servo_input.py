@@ -94,3 +94,28 @@ def test_a_new_plate_inside_a_grain_is_still_refused(tmp_path):
                      tmp_path)
     assert res.returncode != 0, res.output[-1500:]
     assert "wall/gran/servo q: the plate starts 0.0909 radii inside a particle" in res.error_line(), res.error_line()
+
+
+def test_a_plate_from_a_restart_file_is_not_checked_again(tmp_path):
+    # a checkpoint of a plate pressed into a grain (here by growth; in a shear run by the load)
+    # resumes: the plate's state comes from the restart file, so the start check does not apply
+    first = GROW.replace("NEWPLATE", "write_restart pressed.restart")
+    lmprun.run(first, tmp_path).check()
+    resume = """
+units si
+atom_style sphere
+boundary p p f
+comm_modify vel yes
+read_restart pressed.restart
+comm_modify vel yes
+PLATE
+fix 1 all nve/sphere
+run 10
+print "RESUMED $(f_p[3]:%.6g)"
+""".replace("PLATE", PLATE.replace("zplane 0.0", "zplane 0.0075"))
+    res = lmprun.run(resume, tmp_path).check()
+    fz = float([l for l in res.output.splitlines() if l.startswith("RESUMED")][0].split()[1])
+    assert fz < 0.0
+    # the same deck with a new fix ID (no restart state) is refused
+    bad = lmprun.run(resume.replace("fix p all", "fix q all").replace("f_p[3]", "f_q[3]"), tmp_path)
+    assert bad.returncode != 0 and "wall/gran/servo q: the plate starts" in bad.error_line(), bad.output[-800:]
