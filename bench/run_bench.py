@@ -76,12 +76,17 @@ def main():
     args = ap.parse_args()
     wd = ROOT / "runs" / "bench"
     wd.mkdir(parents=True, exist_ok=True)
-    data = wd / ("packing-%d-%.2f.data" % (args.atoms_per_cell, args.phi))
+    # the random insertion (no overlaps) starts from a dilute box (solid fraction of the
+    # insertion spheres about 0.25) so that all atoms_per_cell atoms fit; then compressed to phi
+    L0 = 0.0625 * (args.atoms_per_cell / 400) ** (1 / 3)
+    data = wd / ("packing-%d-%.2f-L%.4f.data" % (args.atoms_per_cell, args.phi, L0))
     if not data.exists():
         print("bench: making the packing (%d atoms, once) ..." % args.atoms_per_cell, flush=True)
-        L0 = 0.05 * (args.atoms_per_cell / 400) ** (1 / 3)
         made = packing.make(wd / "packing", n=args.atoms_per_cell, phi=args.phi, L0=L0,
                             ncompress=20000, np_ranks=2)
+        natoms = int(re.search(r"^(\d+) atoms$", made.read_text(), re.M).group(1))
+        if natoms != args.atoms_per_cell:
+            sys.exit("bench: only %d of %d atoms inserted" % (natoms, args.atoms_per_cell))
         made.rename(data)
     styles = (("tbags gran/hertz/rolling", OURS), ("stock granular", STOCK))
     if args.callgrind:

@@ -37,7 +37,8 @@ static const char *STYLE = "Pair style gran/hertz/rolling";
 PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3), ntypes1(0),
     freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
-    maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr)
+    maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr),
+    packx(nullptr), packv(nullptr), npack(0)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
   // TBAGS_NO_AVX2 in the environment: the baseline build (tests check both give the same bits)
@@ -63,6 +64,8 @@ PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
 PairGranHertzRolling::~PairGranHertzRolling()
 {
   delete[] svector;
+  free(packx);
+  free(packv);
   if (!fix_history && modify->get_fix_by_id("NEIGH_HISTORY_GHR_DUMMY"))
     modify->delete_fix("NEIGH_HISTORY_GHR_DUMMY");
   else if (fix_history && modify->get_fix_by_id("NEIGH_HISTORY_GHR"))
@@ -382,9 +385,19 @@ void PairGranHertzRolling::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   if (!batch) batch.reset(new Batch);
   const bool upd = update->setupflag == 0;
-  if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true>() : eval<law::ROLLING_EPSD, false>();
-  else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true>() : eval<law::ROLLING_CDT, false>();
-  else upd ? eval<law::ROLLING_NONE, true>() : eval<law::ROLLING_NONE, false>();
+  // special-bond bits in the neighbor list: only with bonds and special factors other than 0, 1
+  const bool sb = atom->molecular != Atom::ATOMIC &&
+      (neighbor->special_flag[1] == 2 || neighbor->special_flag[2] == 2 ||
+       neighbor->special_flag[3] == 2);
+  if (sb) {
+    if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true, true>() : eval<law::ROLLING_EPSD, false, true>();
+    else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true, true>() : eval<law::ROLLING_CDT, false, true>();
+    else upd ? eval<law::ROLLING_NONE, true, true>() : eval<law::ROLLING_NONE, false, true>();
+  } else {
+    if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true, false>() : eval<law::ROLLING_EPSD, false, false>();
+    else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true, false>() : eval<law::ROLLING_CDT, false, false>();
+    else upd ? eval<law::ROLLING_NONE, true, false>() : eval<law::ROLLING_NONE, false, false>();
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -406,24 +419,61 @@ const law::Params *PairGranHertzRolling::uniform_params() const
 }
 
 /* ----------------------------------------------------------------------
-   pass 1: walk the neighbor list, reset the history of separated pairs and gather the
-   touching ones into the batch; when full, run the law over it and scatter the result
+   the kernel's per-atom data of local and ghost atoms, packed into two aligned records
 ------------------------------------------------------------------------- */
 
-template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
+void PairGranHertzRolling::pack_atoms()
 {
-  if (list->inum == 0) return;
-  Batch &b = *batch;
-  // per-atom 3-vectors as flat arrays (LAMMPS allocates them contiguously): one load less
+  const int nall = atom->nlocal + atom->nghost;
+  if (nall > npack) {
+    free(packx);
+    free(packv);
+    npack = (nall + nall / 8 + 64) & ~1;    // even: whole 64-byte lines
+    packx = static_cast<AtomX *>(aligned_alloc(64, sizeof(AtomX) * (size_t) npack));
+    packv = static_cast<AtomV *>(aligned_alloc(64, sizeof(AtomV) * (size_t) npack));
+    if (!packx || !packv) error->one(FLERR, "{}: out of memory packing {} atoms", STYLE, nall);
+  }
   const double *x = atom->x[0];
   const double *v = atom->v[0];
   const double *omega = atom->omega[0];
   const double *radius = atom->radius;
   const double *rmass = atom->rmass;
-  const int *mask = atom->mask;
   const int *type = atom->type;
-  const double *special_lj = force->special_lj;
+  const int *mask = atom->mask;
   const int frzbit = freeze_group_bit;
+  AtomX *__restrict px = packx;
+  AtomV *__restrict pv = packv;
+  for (int i = 0; i < nall; i++) {
+    px[i].x[0] = x[3 * i];
+    px[i].x[1] = x[3 * i + 1];
+    px[i].x[2] = x[3 * i + 2];
+    px[i].r = radius[i];
+    pv[i].v[0] = v[3 * i];
+    pv[i].v[1] = v[3 * i + 1];
+    pv[i].v[2] = v[3 * i + 2];
+    pv[i].m = rmass[i];
+    pv[i].w[0] = omega[3 * i];
+    pv[i].w[1] = omega[3 * i + 1];
+    pv[i].w[2] = omega[3 * i + 2];
+    pv[i].type = type[i];
+    pv[i].frz = (mask[i] & frzbit) ? 1 : 0;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pass 1: walk the neighbor list, reset the history of separated pairs and gather the
+   touching ones into the batch; when full, run the law over it and scatter the result.
+   SB: the list may hold special-bond bits (else every factor is 1 and j needs no mask).
+------------------------------------------------------------------------- */
+
+template <int ROLL, bool UPDATE, bool SB> void PairGranHertzRolling::eval()
+{
+  if (list->inum == 0) return;
+  pack_atoms();
+  Batch &b = *batch;
+  const AtomX *__restrict px = packx;
+  const AtomV *__restrict pv = packv;
+  const double *special_lj = force->special_lj;
 
   const int inum = list->inum;
   const int *ilist = list->ilist;
@@ -439,36 +489,41 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
     if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
     else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
+  if (!SB)
+    for (int l = 0; l < Batch::N; l++) b.factor[l] = 1.0;
 
-  // values are read into locals before the batch stores (which may alias atom arrays)
   int n = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
-    const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
-    const double wi0 = omega[3 * i], wi1 = omega[3 * i + 1], wi2 = omega[3 * i + 2];
-    const double radi = radius[i], mi = rmass[i];
+    const double xi0 = px[i].x[0], xi1 = px[i].x[1], xi2 = px[i].x[2], radi = px[i].r;
+    const AtomV &ai = pv[i];
+    const double vi0 = ai.v[0], vi1 = ai.v[1], vi2 = ai.v[2];
+    const double wi0 = ai.w[0], wi1 = ai.w[1], wi2 = ai.w[2];
+    const double mi = ai.m;
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     int *touch = firsttouch[i];
     double *allhistory = firsthistory[i];
-    const law::Params *prow = &law[type[i] * ntypes1];
-    const double frzi = (mask[i] & frzbit) ? 1.0 : 0.0;
+    const law::Params *prow = &law[ai.type * ntypes1];
+    const double frzi = ai.frz ? 1.0 : 0.0;
 
     for (int jj = 0; jj < jnum; jj++) {
       int j = jlist[jj];
-      const double factor_lj = special_lj[sbmask(j)];
-      j &= NEIGHMASK;
-      if (factor_lj == 0.0) continue;
+      double factor_lj = 1.0;
+      if (SB) {
+        factor_lj = special_lj[sbmask(j)];
+        j &= NEIGHMASK;
+        if (factor_lj == 0.0) continue;
+      }
 
-      const double *xj = &x[3 * j];
-      const double dx0 = xi0 - xj[0], dx1 = xi1 - xj[1], dx2 = xi2 - xj[2];
+      const AtomX &aj = px[j];
+      const double dx0 = xi0 - aj.x[0], dx1 = xi1 - aj.x[1], dx2 = xi2 - aj.x[2];
       const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
-      const double radj = radius[j];
+      const double radj = aj.r;
       const double radsum = radi + radj;
       double *hist = &allhistory[NH * jj];
       if (!law::touching(rsq, radsum)) {
-        if (touch[jj]) {
+        if (touch[jj]) {    // was touching: forget (not-touching pairs stay untouched)
           touch[jj] = 0;
           for (int k = 0; k < NH; k++) hist[k] = 0.0;
         }
@@ -476,38 +531,30 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
       }
       touch[jj] = 1;
 
-      const double *vj = &v[3 * j], *wj = &omega[3 * j];
-      const double vr0 = vi0 - vj[0], vr1 = vi1 - vj[1], vr2 = vi2 - vj[2];
-      const double wj0 = wj[0], wj1 = wj[1], wj2 = wj[2];
-      const double mj = rmass[j];
-      const double frz = frzi + ((mask[j] & frzbit) ? 2.0 : 0.0);
-      const law::Params *pij = &prow[type[j]];
-      double h[NH];
-      for (int k = 0; k < NH; k++) h[k] = hist[k];
-
+      const AtomV &bj = pv[j];
       b.i[n] = i;
       b.j[n] = j;
       b.hist[n] = hist;
-      b.p[n] = pij;
+      if (!puni) b.p[n] = &prow[bj.type];
       b.dx[0][n] = dx0;
       b.dx[1][n] = dx1;
       b.dx[2][n] = dx2;
       b.radi[n] = radi;
       b.radj[n] = radj;
       b.mi[n] = mi;
-      b.mj[n] = mj;
-      b.frz[n] = frz;
-      b.factor[n] = factor_lj;
-      b.vr[0][n] = vr0;
-      b.vr[1][n] = vr1;
-      b.vr[2][n] = vr2;
+      b.mj[n] = bj.m;
+      b.frz[n] = frzi + (bj.frz ? 2.0 : 0.0);
+      if (SB) b.factor[n] = factor_lj;
+      b.vr[0][n] = vi0 - bj.v[0];
+      b.vr[1][n] = vi1 - bj.v[1];
+      b.vr[2][n] = vi2 - bj.v[2];
       b.wi[0][n] = wi0;
       b.wi[1][n] = wi1;
       b.wi[2][n] = wi2;
-      b.wj[0][n] = wj0;
-      b.wj[1][n] = wj1;
-      b.wj[2][n] = wj2;
-      for (int k = 0; k < NH; k++) b.h[k][n] = h[k];
+      b.wj[0][n] = bj.w[0];
+      b.wj[1][n] = bj.w[1];
+      b.wj[2][n] = bj.w[2];
+      for (int k = 0; k < NH; k++) b.h[k][n] = hist[k];
       if (++n == Batch::N) {
         flush(n);
         n = 0;
@@ -524,43 +571,46 @@ template <int ROLL, bool UPDATE> void PairGranHertzRolling::eval()
 template <int NH, int NEWTON, int EVFLAG> void PairGranHertzRolling::batch_scatter(int n)
 {
   const Batch &b = *batch;
-  double *f = atom->f[0];
-  double *torque = atom->torque[0];
+  double *__restrict f = atom->f[0];
+  double *__restrict torque = atom->torque[0];
   const int nlocal = atom->nlocal;
   // f and torque of i summed in registers over its run of contacts: the same additions in the
   // same order as updating the arrays each time (j is never i)
   for (int l = 0; l < n;) {
     const int i = b.i[l];
-    double fi0 = f[3 * i], fi1 = f[3 * i + 1], fi2 = f[3 * i + 2];
-    double ti0 = torque[3 * i], ti1 = torque[3 * i + 1], ti2 = torque[3 * i + 2];
-    for (; l < n && b.i[l] == i; l++) {
+    double *fi = f + 3 * i, *ti = torque + 3 * i;
+    double fi0 = fi[0], fi1 = fi[1], fi2 = fi[2];
+    double ti0 = ti[0], ti1 = ti[1], ti2 = ti[2];
+    do {
       const int j = b.j[l];
-      fi0 += b.f[0][l];
-      fi1 += b.f[1][l];
-      fi2 += b.f[2][l];
+      const double f0 = b.f[0][l], f1 = b.f[1][l], f2 = b.f[2][l];
+      fi0 += f0;
+      fi1 += f1;
+      fi2 += f2;
       ti0 += b.ti[0][l];
       ti1 += b.ti[1][l];
       ti2 += b.ti[2][l];
       if (NEWTON || j < nlocal) {
-        f[3 * j] -= b.f[0][l];
-        f[3 * j + 1] -= b.f[1][l];
-        f[3 * j + 2] -= b.f[2][l];
-        torque[3 * j] += b.tj[0][l];
-        torque[3 * j + 1] += b.tj[1][l];
-        torque[3 * j + 2] += b.tj[2][l];
+        double *fj = f + 3 * j, *tj = torque + 3 * j;
+        fj[0] -= f0;
+        fj[1] -= f1;
+        fj[2] -= f2;
+        tj[0] += b.tj[0][l];
+        tj[1] += b.tj[1][l];
+        tj[2] += b.tj[2][l];
       }
       double *hist = b.hist[l];
       for (int k = 0; k < NH; k++) hist[k] = b.h[k][l];
       if (EVFLAG)
-        ev_tally_xyz(i, j, nlocal, NEWTON, 0.0, 0.0, b.f[0][l], b.f[1][l], b.f[2][l], b.dx[0][l],
-                     b.dx[1][l], b.dx[2][l]);
-    }
-    f[3 * i] = fi0;
-    f[3 * i + 1] = fi1;
-    f[3 * i + 2] = fi2;
-    torque[3 * i] = ti0;
-    torque[3 * i + 1] = ti1;
-    torque[3 * i + 2] = ti2;
+        ev_tally_xyz(i, j, nlocal, NEWTON, 0.0, 0.0, f0, f1, f2, b.dx[0][l], b.dx[1][l],
+                     b.dx[2][l]);
+    } while (++l < n && b.i[l] == i);
+    fi[0] = fi0;
+    fi[1] = fi1;
+    fi[2] = fi2;
+    ti[0] = ti0;
+    ti[1] = ti1;
+    ti[2] = ti2;
   }
 }
 

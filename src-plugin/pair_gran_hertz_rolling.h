@@ -79,11 +79,27 @@ class PairGranHertzRolling : public Pair {
 
   std::unique_ptr<Batch> batch;
 
+  // Per-atom data of the kernel packed once per compute() (local and ghost atoms): the distance
+  // test reads one 32-byte record, a touching neighbour one 64-byte line more, instead of
+  // seven separate arrays.
+  struct alignas(32) AtomX {
+    double x[3], r;
+  };
+  struct alignas(64) AtomV {
+    double v[3], m, w[3];
+    int type, frz;    // frz: 1 in the fix freeze group
+  };
+  AtomX *packx;
+  AtomV *packv;
+  int npack;    // capacity
+  void pack_atoms();
+
   void allocate();
-  template <int ROLL, bool UPDATE> void eval();
+  template <int ROLL, bool UPDATE, bool SB> void eval();
   bool simd_avx2;    // the CPU runs the AVX2 build of the batch law
   const tbags::contact::Params *uniform_params() const;
-  template <int NH, int NEWTON, int EVFLAG> __attribute__((noinline)) void batch_scatter(int n);
+  template <int NH, int NEWTON, int EVFLAG>
+  __attribute__((noinline, optimize("no-tree-slp-vectorize"))) void batch_scatter(int n);
   // geometry and kinematics of the pair i-j for the law (dx = x_i - x_j, already computed);
   // m* is the other particle's mass when one of them is frozen (fix freeze)
   void set_contact(int i, int j, double *dx, double rsq, double radsum,
