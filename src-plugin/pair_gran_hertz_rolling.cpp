@@ -304,7 +304,8 @@ double PairGranHertzRolling::init_one(int i, int j)
 namespace {
 using Batch = PairGranHertzRolling::Batch;
 
-// UNI: one set of constants for all lanes (one atom type), pu, instead of one per lane
+// UNI: one set of constants for all lanes, pu, with rolling on (mu_r > 0) or off for all, and
+// no special-bond factors; else constants b.p and factors b.factor per lane
 template <int ROLL, bool UPDATE, bool UNI>
 TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
@@ -325,7 +326,7 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     V3 hr{0.0, 0.0, 0.0};
     if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
     law::LaneOut o;
-    law::contact_lane<ROLL, UPDATE>(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, radi * radj / radsum, meff, radi, radj,
+    law::contact_lane<ROLL, UPDATE, UNI>(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, radi * radj / radsum, meff, radi, radj,
                                     V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
                                     V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
                                     V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, false, dt, ht, hr, o);
@@ -337,7 +338,7 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
       b.h[4][l] = hr.y;
       b.h[5][l] = hr.z;
     }
-    const double fl = b.factor[l];    // special bonds: exact no-op for 1
+    const double fl = UNI ? 1.0 : b.factor[l];    // special bonds: exact no-op for 1
     b.f[0][l] = o.f.x * fl;
     b.f[1][l] = o.f.y * fl;
     b.f[2][l] = o.f.z * fl;
@@ -365,7 +366,7 @@ __attribute__((target("avx2"))) void law_lanes_avx2(Batch &b, int n, double dt, 
 }
 #endif
 
-// pu: the constants when there is one atom type, else nullptr (per-lane b.p)
+// pu: the constants of all lanes (UNI above), else nullptr (per-lane b.p and b.factor)
 template <int ROLL, bool UPDATE>
 void batch_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Params *pu)
 {
@@ -483,14 +484,16 @@ template <int ROLL, bool UPDATE, bool SB> void PairGranHertzRolling::eval()
   double **firsthistory = fix_history->firstvalue;
 
   constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
+  // one set of constants for all contacts (UNI in law_lanes), else per contact
   const law::Params *puni = uniform_params();
+  if (SB || (puni && ROLL != law::ROLLING_NONE && !(puni->mur > 0.0))) puni = nullptr;
   auto flush = [&](int n) {
     batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2, puni);
     if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
     else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
   if (!SB)
-    for (int l = 0; l < Batch::N; l++) b.factor[l] = 1.0;
+    for (int l = 0; l < Batch::N; l++) b.factor[l] = 1.0;    // used when !puni
 
   int n = 0;
   for (int ii = 0; ii < inum; ii++) {

@@ -125,7 +125,21 @@ struct LaneOut {
   double fn, fne, delta, r;
 };
 
-template <int ROLL, bool UPDATE>
+// onto_plane() of vec3.h with one square root and one division instead of two and one:
+// a without its component along n, scaled back to a's length (0 when nothing is left)
+TBAGS_INLINE vec::V3 onto_plane_lane(const vec::V3 &a, const vec::V3 &n)
+{
+  using namespace vec;
+  const double an = dot(a, n);
+  const double mag2 = dot(a, a);
+  const V3 b = a - an * n;
+  const double prj2 = dot(b, b);
+  const double s = prj2 > 0.0 ? std::sqrt(mag2 / prj2) : 0.0;
+  return s * b;
+}
+
+// ALLON: the caller knows p.mur > 0 for this contact (rolling acts; no per-lane test)
+template <int ROLL, bool UPDATE, bool ALLON = false>
 TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, double rsq, double radsum,
                                double reff, double meff, double radi, double radj,
                                const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
@@ -156,7 +170,7 @@ TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, do
   const double fscrit = p.mu * fncrit;
   if (UPDATE) {
     const bool rot = std::fabs(dot(ht, n)) * kts > FRAME_EPS * fscrit;
-    ht = select(rot, onto_plane(ht, n), ht) + dt * vtr;
+    ht = select(rot, onto_plane_lane(ht, n), ht) + dt * vtr;
   }
   V3 fs = (-damp_t) * vtr - kts * ht;
   const double fs2 = dot(fs, fs);
@@ -164,7 +178,8 @@ TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, do
   const bool slide = fs2 > fscrit * fscrit;
   const bool hnz = dot(ht, ht) != 0.0;    // |xi| != 0
   const double s = fscrit / std::sqrt(fs2);
-  ht = select(slide & hnz, (-1.0) * (s * fs + damp_t * vtr) / kts, ht);
+  // on sliding, xi such that the spring + damping force is the capped force
+  ht = select(slide & hnz, (-1.0 / kts) * (s * fs + damp_t * vtr), ht);
   fs = select(slide, hnz ? s * fs : V3{0.0, 0.0, 0.0}, fs);
 
   o.f = fn * n + fs;
@@ -177,7 +192,7 @@ TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, do
   // rolling resistance
   o.fr = V3{0.0, 0.0, 0.0};
   if (ROLL != ROLLING_NONE) {
-    const bool on = p.mur > 0.0;
+    const bool on = ALLON || p.mur > 0.0;
     const V3 vrl = reff * cross(wi - wj, n);
     const double frcrit = p.mur * fncrit;
     V3 fr;
@@ -186,18 +201,18 @@ TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, do
       V3 h = hr;
       if (UPDATE) {
         const bool rot = std::fabs(dot(h, n)) * ks > FRAME_EPS * frcrit;
-        h = select(rot, onto_plane(h, n), h) + dt * vrl;
+        h = select(rot, onto_plane_lane(h, n), h) + dt * vrl;
       }
       fr = (-ks) * h;
       const double fr2 = dot(fr, fr);
       const bool cap = fr2 > frcrit * frcrit;
       const double sr = frcrit / std::sqrt(fr2);
-      h = select(cap, ((-sr) * fr) / ks, h);
+      h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
       fr = select(cap, sr * fr, fr);
       hr = select(on, h, hr);
     } else {    // CDT: constant magnitude against the rolling velocity
       const double vl = std::sqrt(dot(vrl, vrl));
-      fr = select(vl > 0.0, ((-frcrit) * vrl) / vl, V3{0.0, 0.0, 0.0});
+      fr = select(vl > 0.0, (-frcrit / vl) * vrl, V3{0.0, 0.0, 0.0});
     }
     o.fr = select(on, fr, o.fr);
     const V3 troll = reff * cross(n, o.fr);
