@@ -24,10 +24,6 @@
 #include <cstdlib>
 #include <cstring>
 
-// the batch law is also built for AVX2 and picked at run time (GCC and Clang on x86-64)
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__AVX2__) && !defined(TBAGS_NO_AVX2_CLONE)
-#define TBAGS_HAVE_AVX2_CLONE 1
-#endif
 
 using namespace LAMMPS_NS;
 namespace law = tbags::contact;
@@ -423,7 +419,7 @@ const law::Params *PairGranHertzRolling::uniform_params() const
    the kernel's per-atom data of local and ghost atoms, packed into two aligned records
 ------------------------------------------------------------------------- */
 
-void PairGranHertzRolling::pack_atoms()
+TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
 {
   const int nall = atom->nlocal + atom->nghost;
   if (nall > npack) {
@@ -468,6 +464,20 @@ void PairGranHertzRolling::pack_atoms()
 ------------------------------------------------------------------------- */
 
 template <int ROLL, bool UPDATE, bool SB> void PairGranHertzRolling::eval()
+{
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  if (simd_avx2) return eval_avx2<ROLL, UPDATE, SB>();
+#endif
+  eval_body<ROLL, UPDATE, SB>();
+}
+
+// packing and gather built for AVX2 too (no FMA: the same bits as the baseline build)
+template <int ROLL, bool UPDATE, bool SB> void PairGranHertzRolling::eval_avx2()
+{
+  eval_body<ROLL, UPDATE, SB>();
+}
+
+template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling::eval_body()
 {
   if (list->inum == 0) return;
   pack_atoms();

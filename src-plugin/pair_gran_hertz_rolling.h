@@ -13,6 +13,14 @@
 #include <memory>
 #include <vector>
 
+// the batch kernel is also built for AVX2 and picked at run time (GCC and Clang on x86-64)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__AVX2__) && !defined(TBAGS_NO_AVX2_CLONE)
+#define TBAGS_HAVE_AVX2_CLONE 1
+#define TBAGS_TARGET_AVX2 __attribute__((target("avx2")))
+#else
+#define TBAGS_TARGET_AVX2
+#endif
+
 namespace LAMMPS_NS {
 
 class PairGranHertzRolling : public Pair {
@@ -92,10 +100,12 @@ class PairGranHertzRolling : public Pair {
   AtomX *packx;
   AtomV *packv;
   int npack;    // capacity
-  void pack_atoms();
+  inline void pack_atoms();
 
   void allocate();
   template <int ROLL, bool UPDATE, bool SB> void eval();
+  template <int ROLL, bool UPDATE, bool SB> TBAGS_TARGET_AVX2 void eval_avx2();
+  template <int ROLL, bool UPDATE, bool SB> inline void eval_body();
   bool simd_avx2;    // the CPU runs the AVX2 build of the batch law
   const tbags::contact::Params *uniform_params() const;
   template <int NH, int NEWTON, int EVFLAG>
