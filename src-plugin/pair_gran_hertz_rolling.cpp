@@ -21,6 +21,7 @@
 #include "update.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 
@@ -440,7 +441,32 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
   const int frzbit = freeze_group_bit;
   AtomX *__restrict px = packx;
   AtomV *__restrict pv = packv;
-  for (int i = 0; i < nall; i++) {
+  // whole records as 4-double vectors: 3 values of atom i and one of i+1 loaded, the last
+  // replaced (so the last atom, whose neighbour in memory may not exist, is done by itself)
+  typedef double v4d __attribute__((vector_size(32), aligned(8), may_alias));
+  typedef double v4da __attribute__((vector_size(32), may_alias));
+  auto tf = [&](int i) {    // type and freeze flag in the last 8 bytes of AtomV
+    const unsigned long long b = (unsigned int) type[i] |
+        ((unsigned long long) ((mask[i] & frzbit) ? 1 : 0) << 32);
+    double d;
+    memcpy(&d, &b, sizeof d);
+    return d;
+  };
+  static_assert(sizeof(AtomV) == 64 && offsetof(AtomV, type) == 56 && offsetof(AtomV, frz) == 60,
+                "AtomV layout");
+  for (int i = 0; i < nall - 1; i++) {
+    v4d a = *reinterpret_cast<const v4d *>(x + 3 * i);
+    a[3] = radius[i];
+    *reinterpret_cast<v4da *>(&px[i]) = a;
+    v4d b = *reinterpret_cast<const v4d *>(v + 3 * i);
+    b[3] = rmass[i];
+    reinterpret_cast<v4da *>(&pv[i])[0] = b;
+    v4d c = *reinterpret_cast<const v4d *>(omega + 3 * i);
+    c[3] = tf(i);
+    reinterpret_cast<v4da *>(&pv[i])[1] = c;
+  }
+  if (nall > 0) {
+    const int i = nall - 1;
     px[i].x[0] = x[3 * i];
     px[i].x[1] = x[3 * i + 1];
     px[i].x[2] = x[3 * i + 2];
