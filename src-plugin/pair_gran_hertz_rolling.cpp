@@ -311,10 +311,12 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
 #pragma omp simd
 #endif
   for (int l = 0; l < n; l++) {
-    const double mi = b.mi[l], mj = b.mj[l];
+    // masses packed negative for frozen atoms (fix freeze): m* is then the other's mass
+    const double mis = b.mi[l], mjs = b.mj[l];
+    const double mi = std::fabs(mis), mj = std::fabs(mjs);
     double meff = mi * mj / (mi + mj);
-    meff = b.frz[l] == 1.0 ? mj : meff;
-    meff = b.frz[l] >= 2.0 ? mi : meff;
+    meff = mis < 0.0 ? mj : meff;
+    meff = mjs < 0.0 ? mi : meff;
     // r^2 and r_i + r_j as in the gather (same operations, same bits)
     const double dx0 = b.dx[0][l], dx1 = b.dx[1][l], dx2 = b.dx[2][l];
     const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
@@ -445,21 +447,21 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
   // replaced (so the last atom, whose neighbour in memory may not exist, is done by itself)
   typedef double v4d __attribute__((vector_size(32), aligned(8), may_alias));
   typedef double v4da __attribute__((vector_size(32), may_alias));
-  auto tf = [&](int i) {    // type and freeze flag in the last 8 bytes of AtomV
-    const unsigned long long b = (unsigned int) type[i] |
-        ((unsigned long long) ((mask[i] & frzbit) ? 1 : 0) << 32);
+  auto tf = [&](int i) {    // the type in the last 8 bytes of AtomV
+    const unsigned long long b = (unsigned int) type[i];
     double d;
     memcpy(&d, &b, sizeof d);
     return d;
   };
-  static_assert(sizeof(AtomV) == 64 && offsetof(AtomV, type) == 56 && offsetof(AtomV, frz) == 60,
-                "AtomV layout");
+  // the mass, negative for atoms in the fix freeze group
+  auto ms = [&](int i) { return (mask[i] & frzbit) ? -rmass[i] : rmass[i]; };
+  static_assert(sizeof(AtomV) == 64 && offsetof(AtomV, type) == 56, "AtomV layout");
   for (int i = 0; i < nall - 1; i++) {
     v4d a = *reinterpret_cast<const v4d *>(x + 3 * i);
     a[3] = radius[i];
     *reinterpret_cast<v4da *>(&px[i]) = a;
     v4d b = *reinterpret_cast<const v4d *>(v + 3 * i);
-    b[3] = rmass[i];
+    b[3] = ms(i);
     reinterpret_cast<v4da *>(&pv[i])[0] = b;
     v4d c = *reinterpret_cast<const v4d *>(omega + 3 * i);
     c[3] = tf(i);
@@ -474,12 +476,12 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
     pv[i].v[0] = v[3 * i];
     pv[i].v[1] = v[3 * i + 1];
     pv[i].v[2] = v[3 * i + 2];
-    pv[i].m = rmass[i];
+    pv[i].m = ms(i);
     pv[i].w[0] = omega[3 * i];
     pv[i].w[1] = omega[3 * i + 1];
     pv[i].w[2] = omega[3 * i + 2];
     pv[i].type = type[i];
-    pv[i].frz = (mask[i] & frzbit) ? 1 : 0;
+    pv[i].pad = 0;
   }
 }
 
@@ -544,7 +546,6 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
     int *touch = firsttouch[i];
     double *allhistory = firsthistory[i];
     const law::Params *prow = &law[ai.type * ntypes1];
-    const double frzi = ai.frz ? 1.0 : 0.0;
 
     for (int jj = 0; jj < jnum; jj++) {
       int j = jlist[jj];
@@ -582,7 +583,6 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
       b.radj[n] = radj;
       b.mi[n] = mi;
       b.mj[n] = bj.m;
-      b.frz[n] = frzi + (bj.frz ? 2.0 : 0.0);
       if (SB) b.factor[n] = factor_lj;
       b.vr[0][n] = vi0 - bj.v[0];
       b.vr[1][n] = vi1 - bj.v[1];

@@ -61,7 +61,7 @@ class PairGranHertzRolling : public Pair {
     int i[N], j[N];
     double *hist[N];
     const tbags::contact::Params *p[N];
-    double dx[3][N], radi[N], radj[N], mi[N], mj[N], frz[N], factor[N];
+    double dx[3][N], radi[N], radj[N], mi[N], mj[N], factor[N];    // m < 0: frozen
     double vr[3][N], wi[3][N], wj[3][N], h[6][N];
     double f[3][N], ti[3][N], tj[3][N];
   };
@@ -94,8 +94,8 @@ class PairGranHertzRolling : public Pair {
     double x[3], r;
   };
   struct alignas(64) AtomV {
-    double v[3], m, w[3];
-    int type, frz;    // frz: 1 in the fix freeze group
+    double v[3], m, w[3];    // m < 0: in the fix freeze group (m* is the other's mass)
+    int type, pad;
   };
   AtomX *packx;
   AtomV *packv;
