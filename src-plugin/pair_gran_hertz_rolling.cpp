@@ -300,6 +300,7 @@ double PairGranHertzRolling::init_one(int i, int j)
 
 namespace {
 using Batch = PairGranHertzRolling::Batch;
+typedef double v4d __attribute__((vector_size(32), may_alias));    // AtomX, aligned
 
 // UNI: one set of constants for all lanes, pu, with rolling on (mu_r > 0) or off for all, and
 // no special-bond factors; else constants b.p and factors b.factor per lane
@@ -445,7 +446,7 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
   AtomV *__restrict pv = packv;
   // whole records as 4-double vectors: 3 values of atom i and one of i+1 loaded, the last
   // replaced (so the last atom, whose neighbour in memory may not exist, is done by itself)
-  typedef double v4d __attribute__((vector_size(32), aligned(8), may_alias));
+  typedef double v4du __attribute__((vector_size(32), aligned(8), may_alias));
   typedef double v4da __attribute__((vector_size(32), may_alias));
   auto tf = [&](int i) {    // the type in the last 8 bytes of AtomV
     const unsigned long long b = (unsigned int) type[i];
@@ -457,13 +458,13 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
   auto ms = [&](int i) { return (mask[i] & frzbit) ? -rmass[i] : rmass[i]; };
   static_assert(sizeof(AtomV) == 64 && offsetof(AtomV, type) == 56, "AtomV layout");
   for (int i = 0; i < nall - 1; i++) {
-    v4d a = *reinterpret_cast<const v4d *>(x + 3 * i);
+    v4du a = *reinterpret_cast<const v4du *>(x + 3 * i);
     a[3] = radius[i];
     *reinterpret_cast<v4da *>(&px[i]) = a;
-    v4d b = *reinterpret_cast<const v4d *>(v + 3 * i);
+    v4du b = *reinterpret_cast<const v4du *>(v + 3 * i);
     b[3] = ms(i);
     reinterpret_cast<v4da *>(&pv[i])[0] = b;
-    v4d c = *reinterpret_cast<const v4d *>(omega + 3 * i);
+    v4du c = *reinterpret_cast<const v4du *>(omega + 3 * i);
     c[3] = tf(i);
     reinterpret_cast<v4da *>(&pv[i])[1] = c;
   }
@@ -536,7 +537,9 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
   int n = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    const double xi0 = px[i].x[0], xi1 = px[i].x[1], xi2 = px[i].x[2], radi = px[i].r;
+    const double radi = px[i].r;
+    // (x_i, -r_i) - (x_j, r_j): dx and -(r_i + r_j) in one vector operation
+    const v4d xi4 = {px[i].x[0], px[i].x[1], px[i].x[2], -radi};
     const AtomV &ai = pv[i];
     const double vi0 = ai.v[0], vi1 = ai.v[1], vi2 = ai.v[2];
     const double wi0 = ai.w[0], wi1 = ai.w[1], wi2 = ai.w[2];
@@ -556,13 +559,12 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
         if (factor_lj == 0.0) continue;
       }
 
-      const AtomX &aj = px[j];
-      const double dx0 = xi0 - aj.x[0], dx1 = xi1 - aj.x[1], dx2 = xi2 - aj.x[2];
-      const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
-      const double radj = aj.r;
-      const double radsum = radi + radj;
+      const v4d d = xi4 - *reinterpret_cast<const v4d *>(&px[j]);
+      const v4d dd = d * d;
+      // r^2 as (dx0^2 + dx1^2) + dx2^2, (r_i + r_j)^2 exactly: the same test as touching()
+      const double rsq = dd[0] + dd[1] + dd[2];
       double *hist = &allhistory[NH * jj];
-      if (!law::touching(rsq, radsum)) {
+      if (!(rsq < dd[3])) {
         if (touch[jj]) {    // was touching: forget (not-touching pairs stay untouched)
           touch[jj] = 0;
           for (int k = 0; k < NH; k++) hist[k] = 0.0;
@@ -576,11 +578,11 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
       b.j[n] = j;
       b.hist[n] = hist;
       if (!puni) b.p[n] = &prow[bj.type];
-      b.dx[0][n] = dx0;
-      b.dx[1][n] = dx1;
-      b.dx[2][n] = dx2;
+      b.dx[0][n] = d[0];
+      b.dx[1][n] = d[1];
+      b.dx[2][n] = d[2];
       b.radi[n] = radi;
-      b.radj[n] = radj;
+      b.radj[n] = px[j].r;
       b.mi[n] = mi;
       b.mj[n] = bj.m;
       if (SB) b.factor[n] = factor_lj;
