@@ -24,6 +24,9 @@
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
+#ifdef TBAGS_HAVE_AVX2_CLONE
+#include <immintrin.h>
+#endif
 
 
 using namespace LAMMPS_NS;
@@ -366,6 +369,112 @@ __attribute__((target("avx2"))) void law_lanes_avx2(Batch &b, int n, double dt, 
 }
 #endif
 
+/* ----------------------------------------------------------------------
+   contact history between its per-contact records (NH doubles at b.hist[l]) and the batch
+   rows b.h[k][l]: data movement only; with AVX2, 4 contacts at a time (4x4 transposes)
+------------------------------------------------------------------------- */
+
+template <int NH> void hist_rows_scalar(Batch &b, int l0, int n)
+{
+  for (int l = l0; l < n; l++)
+    for (int k = 0; k < NH; k++) b.h[k][l] = b.hist[l][k];
+}
+
+template <int NH> void rows_hist_scalar(Batch &b, int l0, int n)
+{
+  for (int l = l0; l < n; l++)
+    for (int k = 0; k < NH; k++) b.hist[l][k] = b.h[k][l];
+}
+
+#ifdef TBAGS_HAVE_AVX2_CLONE
+template <int NH> TBAGS_TARGET_AVX2 void hist_rows_avx2(Batch &b, int n)
+{
+  int l = 0;
+  for (; l + 4 <= n; l += 4) {
+    const double *p0 = b.hist[l], *p1 = b.hist[l + 1], *p2 = b.hist[l + 2], *p3 = b.hist[l + 3];
+    if (NH == 6) {
+      const __m256d a0 = _mm256_loadu_pd(p0), a1 = _mm256_loadu_pd(p1);
+      const __m256d a2 = _mm256_loadu_pd(p2), a3 = _mm256_loadu_pd(p3);
+      const __m256d t0 = _mm256_unpacklo_pd(a0, a1), t1 = _mm256_unpackhi_pd(a0, a1);
+      const __m256d t2 = _mm256_unpacklo_pd(a2, a3), t3 = _mm256_unpackhi_pd(a2, a3);
+      _mm256_storeu_pd(&b.h[0][l], _mm256_permute2f128_pd(t0, t2, 0x20));
+      _mm256_storeu_pd(&b.h[1][l], _mm256_permute2f128_pd(t1, t3, 0x20));
+      _mm256_storeu_pd(&b.h[2][l], _mm256_permute2f128_pd(t0, t2, 0x31));
+      _mm256_storeu_pd(&b.h[3][l], _mm256_permute2f128_pd(t1, t3, 0x31));
+      const __m128d c0 = _mm_loadu_pd(p0 + 4), c1 = _mm_loadu_pd(p1 + 4);
+      const __m128d c2 = _mm_loadu_pd(p2 + 4), c3 = _mm_loadu_pd(p3 + 4);
+      _mm256_storeu_pd(&b.h[4][l], _mm256_insertf128_pd(_mm256_castpd128_pd256(
+          _mm_unpacklo_pd(c0, c1)), _mm_unpacklo_pd(c2, c3), 1));
+      _mm256_storeu_pd(&b.h[5][l], _mm256_insertf128_pd(_mm256_castpd128_pd256(
+          _mm_unpackhi_pd(c0, c1)), _mm_unpackhi_pd(c2, c3), 1));
+    } else {
+      const __m128d c0 = _mm_loadu_pd(p0), c1 = _mm_loadu_pd(p1);
+      const __m128d c2 = _mm_loadu_pd(p2), c3 = _mm_loadu_pd(p3);
+      _mm256_storeu_pd(&b.h[0][l], _mm256_insertf128_pd(_mm256_castpd128_pd256(
+          _mm_unpacklo_pd(c0, c1)), _mm_unpacklo_pd(c2, c3), 1));
+      _mm256_storeu_pd(&b.h[1][l], _mm256_insertf128_pd(_mm256_castpd128_pd256(
+          _mm_unpackhi_pd(c0, c1)), _mm_unpackhi_pd(c2, c3), 1));
+      const __m128d s01 = _mm_loadh_pd(_mm_load_sd(p0 + 2), p1 + 2);
+      const __m128d s23 = _mm_loadh_pd(_mm_load_sd(p2 + 2), p3 + 2);
+      _mm256_storeu_pd(&b.h[2][l], _mm256_insertf128_pd(_mm256_castpd128_pd256(s01), s23, 1));
+    }
+  }
+  hist_rows_scalar<NH>(b, l, n);
+}
+
+template <int NH> TBAGS_TARGET_AVX2 void rows_hist_avx2(Batch &b, int n)
+{
+  int l = 0;
+  for (; l + 4 <= n; l += 4) {
+    double *p0 = b.hist[l], *p1 = b.hist[l + 1], *p2 = b.hist[l + 2], *p3 = b.hist[l + 3];
+    const __m256d r0 = _mm256_loadu_pd(&b.h[0][l]), r1 = _mm256_loadu_pd(&b.h[1][l]);
+    const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
+    if (NH == 6) {
+      const __m256d r2 = _mm256_loadu_pd(&b.h[2][l]), r3 = _mm256_loadu_pd(&b.h[3][l]);
+      const __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+      _mm256_storeu_pd(p0, _mm256_permute2f128_pd(t0, t2, 0x20));
+      _mm256_storeu_pd(p1, _mm256_permute2f128_pd(t1, t3, 0x20));
+      _mm256_storeu_pd(p2, _mm256_permute2f128_pd(t0, t2, 0x31));
+      _mm256_storeu_pd(p3, _mm256_permute2f128_pd(t1, t3, 0x31));
+      const __m256d r4 = _mm256_loadu_pd(&b.h[4][l]), r5 = _mm256_loadu_pd(&b.h[5][l]);
+      const __m256d w0 = _mm256_unpacklo_pd(r4, r5), w1 = _mm256_unpackhi_pd(r4, r5);
+      _mm_storeu_pd(p0 + 4, _mm256_castpd256_pd128(w0));
+      _mm_storeu_pd(p1 + 4, _mm256_castpd256_pd128(w1));
+      _mm_storeu_pd(p2 + 4, _mm256_extractf128_pd(w0, 1));
+      _mm_storeu_pd(p3 + 4, _mm256_extractf128_pd(w1, 1));
+    } else {
+      _mm_storeu_pd(p0, _mm256_castpd256_pd128(t0));
+      _mm_storeu_pd(p1, _mm256_castpd256_pd128(t1));
+      _mm_storeu_pd(p2, _mm256_extractf128_pd(t0, 1));
+      _mm_storeu_pd(p3, _mm256_extractf128_pd(t1, 1));
+      const __m256d r2 = _mm256_loadu_pd(&b.h[2][l]);
+      const __m128d lo = _mm256_castpd256_pd128(r2), hi = _mm256_extractf128_pd(r2, 1);
+      _mm_store_sd(p0 + 2, lo);
+      _mm_storeh_pd(p1 + 2, lo);
+      _mm_store_sd(p2 + 2, hi);
+      _mm_storeh_pd(p3 + 2, hi);
+    }
+  }
+  rows_hist_scalar<NH>(b, l, n);
+}
+#endif
+
+template <int NH> inline void hist_rows(Batch &b, int n, bool avx2)
+{
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  if (avx2) return hist_rows_avx2<NH>(b, n);
+#endif
+  hist_rows_scalar<NH>(b, 0, n);
+}
+
+template <int NH> inline void rows_hist(Batch &b, int n, bool avx2)
+{
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  if (avx2) return rows_hist_avx2<NH>(b, n);
+#endif
+  rows_hist_scalar<NH>(b, 0, n);
+}
+
 // pu: the constants of all lanes (UNI above), else nullptr (per-lane b.p and b.factor)
 template <int ROLL, bool UPDATE>
 void batch_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Params *pu)
@@ -527,7 +636,9 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
   const law::Params *puni = uniform_params();
   if (SB || (puni && ROLL != law::ROLLING_NONE && !(puni->mur > 0.0))) puni = nullptr;
   auto flush = [&](int n) {
+    hist_rows<NH>(b, n, simd_avx2);
     batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2, puni);
+    rows_hist<NH>(b, n, simd_avx2);
     if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
     else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
@@ -595,7 +706,6 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
       b.wj[0][n] = bj.w[0];
       b.wj[1][n] = bj.w[1];
       b.wj[2][n] = bj.w[2];
-      for (int k = 0; k < NH; k++) b.h[k][n] = hist[k];
       if (++n == Batch::N) {
         flush(n);
         n = 0;
@@ -640,8 +750,6 @@ template <int NH, int NEWTON, int EVFLAG> void PairGranHertzRolling::batch_scatt
         tj[1] += b.tj[1][l];
         tj[2] += b.tj[2][l];
       }
-      double *hist = b.hist[l];
-      for (int k = 0; k < NH; k++) hist[k] = b.h[k][l];
       if (EVFLAG)
         ev_tally_xyz(i, j, nlocal, NEWTON, 0.0, 0.0, f0, f1, f2, b.dx[0][l], b.dx[1][l],
                      b.dx[2][l]);

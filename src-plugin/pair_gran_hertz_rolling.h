@@ -56,7 +56,7 @@ class PairGranHertzRolling : public Pair {
   // Contacts gathered from the neighbor list in structure-of-arrays form (one row per value,
   // one column per contact), so the law runs over them in SIMD lanes, then scattered back in
   // neighbor-list order (forces sum in the same order as a plain loop).
-  struct Batch {
+  struct alignas(64) Batch {
     static constexpr int N = 64;
     int i[N], j[N];
     double *hist[N];
