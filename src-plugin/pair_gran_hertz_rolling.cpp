@@ -683,6 +683,7 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
         continue;
       }
       touch[jj] = 1;
+      __builtin_prefetch(hist, 1);    // read at the flush, written back after the law
 
       const AtomV &bj = pv[j];
       b.i[n] = i;
