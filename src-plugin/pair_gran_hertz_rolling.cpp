@@ -670,6 +670,7 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
         if (factor_lj == 0.0) continue;
       }
 
+      __builtin_prefetch(&pv[j]);    // needed if touching: fetched while the test runs
       const v4d d = xi4 - *reinterpret_cast<const v4d *>(&px[j]);
       const v4d dd = d * d;
       // r^2 as (dx0^2 + dx1^2) + dx2^2, (r_i + r_j)^2 exactly: the same test as touching()
