@@ -459,6 +459,87 @@ template <int NH> TBAGS_TARGET_AVX2 void rows_hist_avx2(Batch &b, int n)
 }
 #endif
 
+#ifdef TBAGS_HAVE_AVX2_CLONE
+/* ----------------------------------------------------------------------
+   pass 3 for AVX2 (no energy/virial tally): each contact's f, t_i, t_j as one 4-double vector
+   (4x4 transposes of the batch rows), added to j's 3 doubles with one 4-wide load, operation
+   and store: the 4th lane, the next atom's x component, gets x - (+0) or x + (-0), i.e. its
+   own value (j + 1 < nmax: inside the arrays; in order, so nothing is lost). i's sums stay in
+   registers over its run of contacts (j is never i). The same additions in the same order as
+   batch_scatter(): the same bits.
+------------------------------------------------------------------------- */
+
+TBAGS_TARGET_AVX2 TBAGS_INLINE __m256d load3_avx2(const double *p)
+{
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p)), _mm_load_sd(p + 2), 1);
+}
+
+TBAGS_TARGET_AVX2 TBAGS_INLINE void store3_avx2(double *p, __m256d v)
+{
+  _mm_storeu_pd(p, _mm256_castpd256_pd128(v));
+  _mm_store_sd(p + 2, _mm256_extractf128_pd(v, 1));
+}
+
+// rows r0, r1, r2 (4 contacts each) and a constant 4th row z: c[k] = (r0[k], r1[k], r2[k], z)
+TBAGS_TARGET_AVX2 TBAGS_INLINE void rows3_cols(const double *r0, const double *r1,
+                                               const double *r2, __m256d z, __m256d c[4])
+{
+  const __m256d a0 = _mm256_loadu_pd(r0), a1 = _mm256_loadu_pd(r1), a2 = _mm256_loadu_pd(r2);
+  const __m256d t0 = _mm256_unpacklo_pd(a0, a1), t1 = _mm256_unpackhi_pd(a0, a1);
+  const __m256d t2 = _mm256_unpacklo_pd(a2, z), t3 = _mm256_unpackhi_pd(a2, z);
+  c[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+  c[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+  c[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+  c[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+
+template <int NEWTON>
+TBAGS_TARGET_AVX2 __attribute__((noinline)) void scatter_avx2(const Batch &b, int n, double *f,
+                                                              double *torque, int nlocal, int nmax)
+{
+  const __m256d pz = _mm256_setzero_pd(), mz = _mm256_set1_pd(-0.0);
+  const int jlast = nmax - 1;    // j < jlast: the 4th lane is inside the arrays
+  int i = b.i[0];
+  double *fip = f + 3 * (std::ptrdiff_t) i, *tip = torque + 3 * (std::ptrdiff_t) i;
+  __m256d fi = load3_avx2(fip), ti = load3_avx2(tip);
+  for (int l0 = 0; l0 < n; l0 += 4) {    // rows hold N (multiple of 4) entries
+    __m256d cf[4], cti[4], ctj[4];
+    rows3_cols(&b.f[0][l0], &b.f[1][l0], &b.f[2][l0], pz, cf);
+    rows3_cols(&b.ti[0][l0], &b.ti[1][l0], &b.ti[2][l0], pz, cti);
+    rows3_cols(&b.tj[0][l0], &b.tj[1][l0], &b.tj[2][l0], mz, ctj);
+    const int m = n - l0 < 4 ? n - l0 : 4;
+    for (int k = 0; k < m; k++) {
+      const int l = l0 + k;
+      const int il = b.i[l];
+      if (il != i) {
+        store3_avx2(fip, fi);
+        store3_avx2(tip, ti);
+        i = il;
+        fip = f + 3 * (std::ptrdiff_t) i;
+        tip = torque + 3 * (std::ptrdiff_t) i;
+        fi = load3_avx2(fip);
+        ti = load3_avx2(tip);
+      }
+      fi = _mm256_add_pd(fi, cf[k]);
+      ti = _mm256_add_pd(ti, cti[k]);
+      const int j = b.j[l];
+      if (NEWTON || j < nlocal) {
+        const std::ptrdiff_t j3 = 3 * (std::ptrdiff_t) j;
+        if (__builtin_expect(j < jlast, 1)) {
+          _mm256_storeu_pd(f + j3, _mm256_sub_pd(_mm256_loadu_pd(f + j3), cf[k]));
+          _mm256_storeu_pd(torque + j3, _mm256_add_pd(_mm256_loadu_pd(torque + j3), ctj[k]));
+        } else {
+          store3_avx2(f + j3, _mm256_sub_pd(load3_avx2(f + j3), cf[k]));
+          store3_avx2(torque + j3, _mm256_add_pd(load3_avx2(torque + j3), ctj[k]));
+        }
+      }
+    }
+  }
+  store3_avx2(fip, fi);
+  store3_avx2(tip, ti);
+}
+#endif
+
 template <int NH> inline void hist_rows(Batch &b, int n, bool avx2)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
@@ -493,7 +574,7 @@ void batch_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Para
 void PairGranHertzRolling::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (!batch) batch.reset(new Batch);
+  if (!batch) batch.reset(new Batch());    // zeroed: whole 4-row groups are read
   const bool upd = update->setupflag == 0;
   // special-bond bits in the neighbor list: only with bonds and special factors other than 0, 1
   const bool sb = atom->molecular != Atom::ATOMIC &&
@@ -639,6 +720,13 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
     hist_rows<NH>(b, n, simd_avx2);
     batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2, puni);
     rows_hist<NH>(b, n, simd_avx2);
+#ifdef TBAGS_HAVE_AVX2_CLONE
+    if (simd_avx2 && !evflag) {
+      if (force->newton_pair) scatter_avx2<1>(b, n, atom->f[0], atom->torque[0], atom->nlocal, atom->nmax);
+      else scatter_avx2<0>(b, n, atom->f[0], atom->torque[0], atom->nlocal, atom->nmax);
+      return;
+    }
+#endif
     if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
     else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
