@@ -311,6 +311,8 @@ template <int ROLL, bool UPDATE, bool UNI>
 TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
   using tbags::vec::V3;
+  // two loops (shorter dependency chains and fewer live values in each): normal and
+  // tangential, then rolling; contact_lane() is the two parts in one
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
 #pragma omp simd
 #endif
@@ -325,32 +327,72 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     const double dx0 = b.dx[0][l], dx1 = b.dx[1][l], dx2 = b.dx[2][l];
     const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
     const double radi = b.radi[l], radj = b.radj[l], radsum = radi + radj;
+    const double reff = radi * radj / radsum;
     V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
-    V3 hr{0.0, 0.0, 0.0};
-    if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
     law::LaneOut o;
-    law::contact_lane<ROLL, UPDATE, UNI>(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, radi * radj / radsum, meff, radi, radj,
-                                    V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
-                                    V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
-                                    V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, false, dt, ht, hr, o);
+    V3 nv;
+    double a;
+    law::contact_lane_nt<UPDATE>(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, reff,
+                                 meff, radi, radj, V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
+                                 V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+                                 V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, false, dt, ht, o, nv, a);
     b.h[0][l] = ht.x;
     b.h[1][l] = ht.y;
     b.h[2][l] = ht.z;
+    const double fl = UNI ? 1.0 : b.factor[l];    // special bonds: exact no-op for 1
+    b.f[0][l] = o.f.x * fl;
+    b.f[1][l] = o.f.y * fl;
+    b.f[2][l] = o.f.z * fl;
+    if (ROLL == law::ROLLING_NONE) {
+      b.ti[0][l] = o.ti.x * fl;
+      b.ti[1][l] = o.ti.y * fl;
+      b.ti[2][l] = o.ti.z * fl;
+      b.tj[0][l] = o.tj.x * fl;
+      b.tj[1][l] = o.tj.y * fl;
+      b.tj[2][l] = o.tj.z * fl;
+    } else {    // the rolling loop adds its torque, then the factor
+      b.ti[0][l] = o.ti.x;
+      b.ti[1][l] = o.ti.y;
+      b.ti[2][l] = o.ti.z;
+      b.tj[0][l] = o.tj.x;
+      b.tj[1][l] = o.tj.y;
+      b.tj[2][l] = o.tj.z;
+      b.n[0][l] = nv.x;
+      b.n[1][l] = nv.y;
+      b.n[2][l] = nv.z;
+      b.a[l] = a;
+      b.fnc[l] = std::fabs(o.fn);
+      b.reff[l] = reff;
+    }
+  }
+  if (ROLL == law::ROLLING_NONE) return;
+#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
+#pragma omp simd
+#endif
+  for (int l = 0; l < n; l++) {
+    V3 hr{0.0, 0.0, 0.0};
+    if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
+    V3 fr, troll;
+    bool on;
+    law::contact_lane_roll<ROLL, UPDATE, UNI>(UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
+                                              b.a[l], b.fnc[l], b.reff[l],
+                                              V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+                                              V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, dt, hr, fr,
+                                              troll, on);
     if (ROLL == law::ROLLING_EPSD) {
       b.h[3][l] = hr.x;
       b.h[4][l] = hr.y;
       b.h[5][l] = hr.z;
     }
-    const double fl = UNI ? 1.0 : b.factor[l];    // special bonds: exact no-op for 1
-    b.f[0][l] = o.f.x * fl;
-    b.f[1][l] = o.f.y * fl;
-    b.f[2][l] = o.f.z * fl;
-    b.ti[0][l] = o.ti.x * fl;
-    b.ti[1][l] = o.ti.y * fl;
-    b.ti[2][l] = o.ti.z * fl;
-    b.tj[0][l] = o.tj.x * fl;
-    b.tj[1][l] = o.tj.y * fl;
-    b.tj[2][l] = o.tj.z * fl;
+    const V3 ti{b.ti[0][l], b.ti[1][l], b.ti[2][l]}, tj{b.tj[0][l], b.tj[1][l], b.tj[2][l]};
+    const V3 tis = tbags::vec::select(on, ti + troll, ti), tjs = tbags::vec::select(on, tj - troll, tj);
+    const double fl = UNI ? 1.0 : b.factor[l];
+    b.ti[0][l] = tis.x * fl;
+    b.ti[1][l] = tis.y * fl;
+    b.ti[2][l] = tis.z * fl;
+    b.tj[0][l] = tjs.x * fl;
+    b.tj[1][l] = tjs.y * fl;
+    b.tj[2][l] = tjs.z * fl;
   }
 }
 

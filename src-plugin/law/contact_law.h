@@ -138,18 +138,19 @@ TBAGS_INLINE vec::V3 onto_plane_lane(const vec::V3 &a, const vec::V3 &n)
   return s * b;
 }
 
-// ALLON: the caller knows p.mur > 0 for this contact (rolling acts; no per-lane test)
-template <int ROLL, bool UPDATE, bool ALLON = false>
-TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, double rsq, double radsum,
-                               double reff, double meff, double radi, double radj,
-                               const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
-                               double dt, vec::V3 &ht, vec::V3 &hr, LaneOut &o)
+// Normal and tangential part of contact_lane (below): o without rolling (o.fr zero), and what
+// the rolling part needs: the unit normal n and the contact radius a (|F_n| is fabs(o.fn)).
+template <bool UPDATE>
+TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx, double rsq,
+                                  double radsum, double reff, double meff, double radi, double radj,
+                                  const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
+                                  double dt, vec::V3 &ht, LaneOut &o, vec::V3 &n, double &a)
 {
   using namespace vec;
   const double r = std::sqrt(rsq);
   const double rinv = 1.0 / r;
   const double delta = radsum - r;
-  const V3 n = rinv * dx;
+  n = rinv * dx;
 
   // relative velocity at the contact point
   const double vnnr = dot(vr, n);
@@ -157,7 +158,7 @@ TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, do
   const V3 vtr = (vr - vnnr * n) - cross(wr, n);
 
   // normal: Hertz + restitution damping
-  const double a = std::sqrt(reff * delta);
+  a = std::sqrt(reff * delta);
   const double fne = p.kn * a * delta;
   const double sqma = std::sqrt(meff * a);
   double fn = fne - p.cn * sqma * vnnr;
@@ -188,43 +189,68 @@ TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, do
   const double armj = radj - 0.5 * delta;
   o.ti = (-armi) * tor;
   o.tj = (-armj) * tor;
-
-  // rolling resistance
   o.fr = V3{0.0, 0.0, 0.0};
-  if (ROLL != ROLLING_NONE) {
-    const bool on = ALLON || p.mur > 0.0;
-    const V3 vrl = reff * cross(wi - wj, n);
-    const double frcrit = p.mur * fncrit;
-    V3 fr;
-    if (ROLL == ROLLING_EPSD) {
-      const double ks = p.krs * a;
-      V3 h = hr;
-      if (UPDATE) {
-        const bool rot = std::fabs(dot(h, n)) * ks > FRAME_EPS * frcrit;
-        h = select(rot, onto_plane_lane(h, n), h) + dt * vrl;
-      }
-      fr = (-ks) * h;
-      const double fr2 = dot(fr, fr);
-      const bool cap = fr2 > frcrit * frcrit;
-      const double sr = frcrit / std::sqrt(fr2);
-      h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
-      fr = select(cap, sr * fr, fr);
-      hr = select(on, h, hr);
-    } else {    // CDT: constant magnitude against the rolling velocity
-      const double vl = std::sqrt(dot(vrl, vrl));
-      fr = select(vl > 0.0, (-frcrit / vl) * vrl, V3{0.0, 0.0, 0.0});
-    }
-    o.fr = select(on, fr, o.fr);
-    const V3 troll = reff * cross(n, o.fr);
-    o.ti = select(on, o.ti + troll, o.ti);
-    o.tj = select(on, o.tj - troll, o.tj);
-  }
-
   o.fs = fs;
   o.fn = fn;
   o.fne = fne;
   o.delta = delta;
   o.r = r;
+}
+
+// Rolling part of contact_lane (ROLL not ROLLING_NONE), from contact_lane_nt()'s n, a and
+// fncrit = |F_n|: the rolling pseudo-force fr and the torque troll = R* n x fr (i gets +troll,
+// j -troll); on: rolling acts (p.mur > 0), else fr, troll and hr are to be left as they were.
+template <int ROLL, bool UPDATE, bool ALLON = false>
+TBAGS_INLINE void contact_lane_roll(const Params &p, const vec::V3 &n, double a, double fncrit,
+                                    double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
+                                    vec::V3 &hr, vec::V3 &fr, vec::V3 &troll, bool &on)
+{
+  using namespace vec;
+  on = ALLON || p.mur > 0.0;
+  const V3 vrl = reff * cross(wi - wj, n);
+  const double frcrit = p.mur * fncrit;
+  if (ROLL == ROLLING_EPSD) {
+    const double ks = p.krs * a;
+    V3 h = hr;
+    if (UPDATE) {
+      const bool rot = std::fabs(dot(h, n)) * ks > FRAME_EPS * frcrit;
+      h = select(rot, onto_plane_lane(h, n), h) + dt * vrl;
+    }
+    fr = (-ks) * h;
+    const double fr2 = dot(fr, fr);
+    const bool cap = fr2 > frcrit * frcrit;
+    const double sr = frcrit / std::sqrt(fr2);
+    h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
+    fr = select(cap, sr * fr, fr);
+    hr = select(on, h, hr);
+  } else {    // CDT: constant magnitude against the rolling velocity
+    const double vl = std::sqrt(dot(vrl, vrl));
+    fr = select(vl > 0.0, (-frcrit / vl) * vrl, V3{0.0, 0.0, 0.0});
+  }
+  fr = select(on, fr, V3{0.0, 0.0, 0.0});
+  troll = reff * cross(n, fr);
+}
+
+// ALLON: the caller knows p.mur > 0 for this contact (rolling acts; no per-lane test)
+template <int ROLL, bool UPDATE, bool ALLON = false>
+TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, double rsq, double radsum,
+                               double reff, double meff, double radi, double radj,
+                               const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
+                               double dt, vec::V3 &ht, vec::V3 &hr, LaneOut &o)
+{
+  using namespace vec;
+  V3 n;
+  double a;
+  contact_lane_nt<UPDATE>(p, clip, dx, rsq, radsum, reff, meff, radi, radj, vr, wi, wj, wall, dt,
+                          ht, o, n, a);
+  if (ROLL != ROLLING_NONE) {
+    V3 troll;
+    bool on;
+    contact_lane_roll<ROLL, UPDATE, ALLON>(p, n, a, std::fabs(o.fn), reff, wi, wj, dt, hr, o.fr,
+                                           troll, on);
+    o.ti = select(on, o.ti + troll, o.ti);
+    o.tj = select(on, o.tj - troll, o.tj);
+  }
 }
 
 // One contact, with the rolling model fixed at compile time. hist: 3 (or 6 for EPSD) doubles,
