@@ -311,8 +311,8 @@ template <int ROLL, bool UPDATE, bool UNI>
 TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
   using tbags::vec::V3;
-  // two loops (shorter dependency chains and fewer live values in each): normal and
-  // tangential, then rolling; contact_lane() is the two parts in one
+  // three loops (shorter dependency chains and fewer live values in each): normal, tangential,
+  // rolling; contact_lane() is the three parts in one
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
 #pragma omp simd
 #endif
@@ -328,14 +328,35 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
     const double radi = b.radi[l], radj = b.radj[l], radsum = radi + radj;
     const double reff = radi * radj / radsum;
+    law::LaneOut o;
+    V3 nv, vt;
+    double a, sqma;
+    law::contact_lane_n(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, reff, meff,
+                        radi, radj, V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
+                        V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+                        V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, o, nv, vt, a, sqma);
+    b.n[0][l] = nv.x;
+    b.n[1][l] = nv.y;
+    b.n[2][l] = nv.z;
+    b.vt[0][l] = vt.x;
+    b.vt[1][l] = vt.y;
+    b.vt[2][l] = vt.z;
+    b.a[l] = a;
+    b.sqma[l] = sqma;
+    b.fn[l] = o.fn;
+    b.delta[l] = o.delta;
+    b.reff[l] = reff;
+  }
+#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
+#pragma omp simd
+#endif
+  for (int l = 0; l < n; l++) {
     V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
     law::LaneOut o;
-    V3 nv;
-    double a;
-    law::contact_lane_nt<UPDATE>(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, reff,
-                                 meff, radi, radj, V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
-                                 V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
-                                 V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, false, dt, ht, o, nv, a);
+    const double fn = b.fn[l];
+    law::contact_lane_t<UPDATE>(UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
+                                V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, b.a[l], b.sqma[l], fn,
+                                b.delta[l], b.radi[l], b.radj[l], false, dt, ht, o);
     b.h[0][l] = ht.x;
     b.h[1][l] = ht.y;
     b.h[2][l] = ht.z;
@@ -357,12 +378,6 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
       b.tj[0][l] = o.tj.x;
       b.tj[1][l] = o.tj.y;
       b.tj[2][l] = o.tj.z;
-      b.n[0][l] = nv.x;
-      b.n[1][l] = nv.y;
-      b.n[2][l] = nv.z;
-      b.a[l] = a;
-      b.fnc[l] = std::fabs(o.fn);
-      b.reff[l] = reff;
     }
   }
   if (ROLL == law::ROLLING_NONE) return;
@@ -375,7 +390,7 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     V3 fr, troll;
     bool on;
     law::contact_lane_roll<ROLL, UPDATE, UNI>(UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
-                                              b.a[l], b.fnc[l], b.reff[l],
+                                              b.a[l], std::fabs(b.fn[l]), b.reff[l],
                                               V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
                                               V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, dt, hr, fr,
                                               troll, on);

@@ -64,7 +64,8 @@ class PairGranHertzRolling : public Pair {
     double dx[3][N], radi[N], radj[N], mi[N], mj[N], factor[N];    // m < 0: frozen
     double vr[3][N], wi[3][N], wj[3][N], h[6][N];
     double f[3][N], ti[3][N], tj[3][N];
-    double n[3][N], a[N], fnc[N], reff[N];    // from the law's first loop to its rolling loop
+    // from the law's normal loop to its tangential and rolling loops
+    double n[3][N], vt[3][N], a[N], sqma[N], fn[N], delta[N], reff[N];
   };
 
  protected:

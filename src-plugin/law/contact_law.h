@@ -138,13 +138,13 @@ TBAGS_INLINE vec::V3 onto_plane_lane(const vec::V3 &a, const vec::V3 &n)
   return s * b;
 }
 
-// Normal and tangential part of contact_lane (below): o without rolling (o.fr zero), and what
-// the rolling part needs: the unit normal n and the contact radius a (|F_n| is fabs(o.fn)).
-template <bool UPDATE>
-TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx, double rsq,
-                                  double radsum, double reff, double meff, double radi, double radj,
-                                  const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
-                                  double dt, vec::V3 &ht, LaneOut &o, vec::V3 &n, double &a)
+// Geometry and normal part of contact_lane (below): unit normal n, tangential relative velocity
+// vtr at the contact point, contact radius a, sqrt(m* a) and the normal force (o.fn, o.fne,
+// o.delta, o.r set).
+TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, double rsq,
+                                 double radsum, double reff, double meff, double radi, double radj,
+                                 const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj,
+                                 LaneOut &o, vec::V3 &n, vec::V3 &vtr, double &a, double &sqma)
 {
   using namespace vec;
   const double r = std::sqrt(rsq);
@@ -155,14 +155,28 @@ TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx,
   // relative velocity at the contact point
   const double vnnr = dot(vr, n);
   const V3 wr = radi * wi + radj * wj;
-  const V3 vtr = (vr - vnnr * n) - cross(wr, n);
+  vtr = (vr - vnnr * n) - cross(wr, n);
 
   // normal: Hertz + restitution damping
   a = std::sqrt(reff * delta);
   const double fne = p.kn * a * delta;
-  const double sqma = std::sqrt(meff * a);
+  sqma = std::sqrt(meff * a);
   double fn = fne - p.cn * sqma * vnnr;
   fn = (clip & (fn < 0.0)) ? 0.0 : fn;
+  o.fn = fn;
+  o.fne = fne;
+  o.delta = delta;
+  o.r = r;
+}
+
+// Tangential part of contact_lane, from contact_lane_n()'s results: o.f, o.ti, o.tj (without
+// rolling), o.fs; o.fr zero.
+template <bool UPDATE>
+TBAGS_INLINE void contact_lane_t(const Params &p, const vec::V3 &n, const vec::V3 &vtr, double a,
+                                 double sqma, double fn, double delta, double radi, double radj,
+                                 bool wall, double dt, vec::V3 &ht, LaneOut &o)
+{
+  using namespace vec;
   const double fncrit = std::fabs(fn);
 
   // tangential: incremental Mindlin spring + damping, Coulomb cap
@@ -191,10 +205,20 @@ TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx,
   o.tj = (-armj) * tor;
   o.fr = V3{0.0, 0.0, 0.0};
   o.fs = fs;
-  o.fn = fn;
-  o.fne = fne;
-  o.delta = delta;
-  o.r = r;
+}
+
+// Normal and tangential part of contact_lane: o without rolling (o.fr zero), and what the
+// rolling part needs: the unit normal n and the contact radius a (|F_n| is fabs(o.fn)).
+template <bool UPDATE>
+TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx, double rsq,
+                                  double radsum, double reff, double meff, double radi, double radj,
+                                  const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
+                                  double dt, vec::V3 &ht, LaneOut &o, vec::V3 &n, double &a)
+{
+  vec::V3 vtr;
+  double sqma;
+  contact_lane_n(p, clip, dx, rsq, radsum, reff, meff, radi, radj, vr, wi, wj, o, n, vtr, a, sqma);
+  contact_lane_t<UPDATE>(p, n, vtr, a, sqma, o.fn, o.delta, radi, radj, wall, dt, ht, o);
 }
 
 // Rolling part of contact_lane (ROLL not ROLLING_NONE), from contact_lane_nt()'s n, a and
