@@ -741,19 +741,26 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
 
 template <int ROLL, bool UPDATE, bool SB> void PairGranHertzRolling::eval()
 {
+  // one set of constants for all contacts (UNI in law_lanes), else per contact
+  const law::Params *puni = uniform_params();
+  if (SB || (puni && ROLL != law::ROLLING_NONE && !(puni->mur > 0.0))) puni = nullptr;
 #ifdef TBAGS_HAVE_AVX2_CLONE
-  if (simd_avx2) return eval_avx2<ROLL, UPDATE, SB>();
+  if (simd_avx2)
+    return puni ? eval_avx2<ROLL, UPDATE, SB, true>(puni) : eval_avx2<ROLL, UPDATE, SB, false>(puni);
 #endif
-  eval_body<ROLL, UPDATE, SB>();
+  puni ? eval_body<ROLL, UPDATE, SB, true>(puni) : eval_body<ROLL, UPDATE, SB, false>(puni);
 }
 
 // packing and gather built for AVX2 too (no FMA: the same bits as the baseline build)
-template <int ROLL, bool UPDATE, bool SB> void PairGranHertzRolling::eval_avx2()
+template <int ROLL, bool UPDATE, bool SB, bool UNI>
+void PairGranHertzRolling::eval_avx2(const law::Params *puni)
 {
-  eval_body<ROLL, UPDATE, SB>();
+  eval_body<ROLL, UPDATE, SB, UNI>(puni);
 }
 
-template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling::eval_body()
+// UNI: puni (not null) holds the constants of all contacts
+template <int ROLL, bool UPDATE, bool SB, bool UNI>
+TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
 {
   if (list->inum == 0) return;
   pack_atoms();
@@ -770,9 +777,6 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
   double **firsthistory = fix_history->firstvalue;
 
   constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
-  // one set of constants for all contacts (UNI in law_lanes), else per contact
-  const law::Params *puni = uniform_params();
-  if (SB || (puni && ROLL != law::ROLLING_NONE && !(puni->mur > 0.0))) puni = nullptr;
   auto flush = [&](int n) {
     hist_rows<NH>(b, n, simd_avx2);
     batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2, puni);
@@ -787,7 +791,7 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
     if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
     else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
-  if (!SB)
+  if (!SB && !UNI)
     for (int l = 0; l < Batch::N; l++) b.factor[l] = 1.0;    // used when !puni
 
   int n = 0;
@@ -835,7 +839,7 @@ template <int ROLL, bool UPDATE, bool SB> TBAGS_INLINE void PairGranHertzRolling
       b.i[n] = i;
       b.j[n] = j;
       b.hist[n] = hist;
-      if (!puni) b.p[n] = &prow[bj.type];
+      if (!UNI) b.p[n] = &prow[bj.type];
       b.dx[0][n] = d[0];
       b.dx[1][n] = d[1];
       b.dx[2][n] = d[2];

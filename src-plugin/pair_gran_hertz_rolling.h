@@ -106,8 +106,10 @@ class PairGranHertzRolling : public Pair {
 
   void allocate();
   template <int ROLL, bool UPDATE, bool SB> void eval();
-  template <int ROLL, bool UPDATE, bool SB> TBAGS_TARGET_AVX2 void eval_avx2();
-  template <int ROLL, bool UPDATE, bool SB> inline void eval_body();
+  template <int ROLL, bool UPDATE, bool SB, bool UNI>
+  TBAGS_TARGET_AVX2 void eval_avx2(const tbags::contact::Params *puni);
+  template <int ROLL, bool UPDATE, bool SB, bool UNI>
+  inline void eval_body(const tbags::contact::Params *puni);
   bool simd_avx2;    // the CPU runs the AVX2 build of the batch law
   const tbags::contact::Params *uniform_params() const;
   template <int NH, int NEWTON, int EVFLAG>
