@@ -704,17 +704,22 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
   // the mass, negative for atoms in the fix freeze group
   auto ms = [&](int i) { return (mask[i] & frzbit) ? -rmass[i] : rmass[i]; };
   static_assert(sizeof(AtomV) == 64 && offsetof(AtomV, type) == 56, "AtomV layout");
-  for (int i = 0; i < nall - 1; i++) {
+  // frz: a fix freeze group exists (else no mask read)
+  auto rec = [&](int i, bool frz) __attribute__((always_inline)) {
     v4du a = *reinterpret_cast<const v4du *>(x + 3 * i);
     a[3] = radius[i];
     *reinterpret_cast<v4da *>(&px[i]) = a;
     v4du b = *reinterpret_cast<const v4du *>(v + 3 * i);
-    b[3] = ms(i);
+    b[3] = frz ? ms(i) : rmass[i];
     reinterpret_cast<v4da *>(&pv[i])[0] = b;
     v4du c = *reinterpret_cast<const v4du *>(omega + 3 * i);
     c[3] = tf(i);
     reinterpret_cast<v4da *>(&pv[i])[1] = c;
-  }
+  };
+  if (frzbit)
+    for (int i = 0; i < nall - 1; i++) rec(i, true);
+  else
+    for (int i = 0; i < nall - 1; i++) rec(i, false);
   if (nall > 0) {
     const int i = nall - 1;
     px[i].x[0] = x[3 * i];
