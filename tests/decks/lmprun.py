@@ -79,3 +79,31 @@ def max_rel_diff(a, b):
     """Largest component difference relative to the largest magnitude in b."""
     a, b = np.asarray(a), np.asarray(b)
     return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
+
+
+# deck tail that records every contact through compute pair/local (single()) and the per-atom
+# forces of compute(): contact_force_sums() then compares the two
+CONTACT_DUMP = """
+compute pl all pair/local dist fx fy fz p1 p2 p3 cutoff radius
+compute pid all property/local patom1 patom2 cutoff radius
+dump c all local 1 contacts.dump c_pid[*] c_pl[*]
+dump_modify c format float %.17g
+run 0
+write_dump all custom forces.dump id fx fy fz modify sort id format float %.17g
+"""
+
+
+def contact_force_sums(workdir):
+    """After a deck ending in CONTACT_DUMP: (contacts, ids, per-atom forces of compute(), sums of
+    the contact forces per atom). Contact columns: id1 id2 dist, normal force on id1 (3),
+    tangential force on id1 (3)."""
+    lines = (Path(workdir) / "contacts.dump").read_text().splitlines()
+    k = max(i for i, l in enumerate(lines) if l.startswith("ITEM: ENTRIES"))
+    c = np.array([[float(x) for x in l.split()] for l in lines[k + 1:] if l.strip()])
+    _, rows = read_dump(Path(workdir) / "forces.dump")
+    ids = rows[:, 0].astype(int)
+    F = np.zeros((ids.max() + 1, 3))
+    fij = c[:, 3:6] + c[:, 6:9]
+    np.add.at(F, c[:, 0].astype(int), fij)
+    np.add.at(F, c[:, 1].astype(int), -fij)
+    return c, ids, rows[:, 1:4], F[ids]

@@ -72,13 +72,7 @@ fix f frz freeze
 timestep 1e-6
 fix 1 all nve/sphere
 run 50
-compute pl all pair/local dist fx fy fz p1 p2 p3 cutoff radius
-compute pid all property/local patom1 patom2 cutoff radius
-dump c all local 1 contacts.dump c_pid[*] c_pl[*]
-dump_modify c format float %.17g
-run 0
-write_dump all custom forces.dump id fx fy fz modify sort id format float %.17g
-"""
+""" + lmprun.CONTACT_DUMP
 
 
 def test_frozen_atoms_use_the_other_mass(tmp_path, data):
@@ -87,18 +81,10 @@ def test_frozen_atoms_use_the_other_mass(tmp_path, data):
     contact forces (which take m* from the masses and the freeze group directly)."""
     import numpy as np
     lmprun.run(FREEZE, tmp_path, variables={"data": data}).check()
-    lines = (tmp_path / "contacts.dump").read_text().splitlines()
-    k = max(i for i, l in enumerate(lines) if l.startswith("ITEM: ENTRIES"))
-    c = np.array([[float(x) for x in l.split()] for l in lines[k + 1:] if l.strip()])
-    _, rows = lmprun.read_dump(tmp_path / "forces.dump")
-    ids = rows[:, 0].astype(int)
-    F = np.zeros((ids.max() + 1, 3))
-    fij = c[:, 3:6] + c[:, 6:9]    # normal + tangential force on id1
-    np.add.at(F, c[:, 0].astype(int), fij)
-    np.add.at(F, c[:, 1].astype(int), -fij)
+    c, ids, forces, sums = lmprun.contact_force_sums(tmp_path)
     free = ids > 150
     frozen_contacts = ((c[:, 0] <= 150) != (c[:, 1] <= 150)).sum()
-    err = np.abs(F[ids[free]] - rows[free, 1:4]).max() / np.abs(c[:, 3:6]).max()
+    err = np.abs(sums[free] - forces[free]).max() / np.abs(c[:, 3:6]).max()
     print("%d contacts, %d between a frozen and a free atom; error %.2e" % (len(c), frozen_contacts, err))
     assert frozen_contacts > 20
     assert err < 1e-12

@@ -24,13 +24,7 @@ velocity all set NULL NULL NULL sum yes
 timestep 1e-6
 fix 1 all nve/sphere
 run 200
-compute pl all pair/local dist fx fy fz p1 p2 p3 cutoff radius
-compute pid all property/local patom1 patom2 cutoff radius
-dump c all local 1 contacts.dump c_pid[*] c_pl[*]
-dump_modify c format float %.17g
-run 0
-write_dump all custom forces.dump id fx fy fz modify sort id format float %.17g
-"""
+""" + lmprun.CONTACT_DUMP
 
 
 @pytest.fixture(scope="module")
@@ -43,18 +37,9 @@ def test_contact_dump_sums_to_the_forces(data, tmp_path, roll, newton, ranks):
     deck = tmp_path / "in.local"
     deck.write_text(DECK.replace("ROLL", roll).replace("NEWTON", newton))
     lmprun.run(deck, tmp_path, np_ranks=ranks, variables={"data": data}).check()
-    lines = (tmp_path / "contacts.dump").read_text().splitlines()
-    k = max(i for i, l in enumerate(lines) if l.startswith("ITEM: ENTRIES"))
-    c = np.array([[float(x) for x in l.split()] for l in lines[k + 1:] if l.strip()])
-    _, rows = lmprun.read_dump(tmp_path / "forces.dump")
-    ids = rows[:, 0].astype(int)
-    F = np.zeros((ids.max() + 1, 3))
-    # columns: id1 id2 dist fx fy fz (normal force on id1) p1 p2 p3 (tangential force on id1)
-    fij = c[:, 3:6] + c[:, 6:9]
-    np.add.at(F, c[:, 0].astype(int), fij)
-    np.add.at(F, c[:, 1].astype(int), -fij)
+    c, ids, forces, sums = lmprun.contact_force_sums(tmp_path)
     fmax, tangential = np.abs(c[:, 3:6]).max(), np.abs(c[:, 6:9]).max()
-    err = np.abs(F[ids] - rows[:, 1:4]).max() / fmax
+    err = np.abs(sums - forces).max() / fmax
     print("%d contacts, largest normal force %.3g N, tangential %.3g N; per-atom force error %.2e of it"
           % (len(c), fmax, tangential, err))
     assert tangential > 1e-2 * fmax
