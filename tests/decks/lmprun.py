@@ -81,6 +81,12 @@ def max_rel_diff(a, b):
     return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
 
 
+def packing_head(newton=None):
+    """Deck head that reads a sphere packing (variable data) with an atom map, as the pair tests do."""
+    return ("\nunits si\natom_style sphere\natom_modify map array\nboundary p p p\ncomm_modify vel yes\n"
+            + ("newton %s\n" % newton if newton else "") + "read_data ${data}\n")
+
+
 # deck tail that records every contact through compute pair/local (single()) and the per-atom
 # forces of compute(): contact_force_sums() then compares the two
 CONTACT_DUMP = """

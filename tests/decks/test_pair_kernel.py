@@ -7,15 +7,7 @@ import pytest
 import lmprun
 import packing
 
-DECK = """
-units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-comm_modify vel yes
-newton ${newton}
-read_data ${data}
-variable vx atom 0.05*normal(0,1,4929)
+DECK = lmprun.packing_head("${newton}") + """variable vx atom 0.05*normal(0,1,4929)
 variable vy atom 0.05*normal(0,1,4930)
 variable vz atom 0.05*normal(0,1,4931)
 velocity all set v_vx v_vy v_vz
@@ -58,14 +50,7 @@ def test_avx2_and_baseline_builds_agree_bitwise(tmp_path, data, monkeypatch, mod
         assert a == b, f
 
 
-FREEZE = """
-units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-comm_modify vel yes
-read_data ${data}
-pair_style gran/hertz/rolling epsd
+FREEZE = lmprun.packing_head() + """pair_style gran/hertz/rolling epsd
 pair_coeff * * material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2
 group frz id <= 150
 fix f frz freeze

@@ -9,15 +9,7 @@ import pytest
 import lmprun
 import packing
 
-DECK = """
-units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-comm_modify vel yes
-newton NEWTON
-read_data ${data}
-pair_style gran/hertz/rolling ROLL
+DECK = lmprun.packing_head("NEWTON") + """pair_style gran/hertz/rolling ROLL
 pair_coeff * * material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2
 velocity all create 1e-9 4928 loop geom
 velocity all set NULL NULL NULL sum yes

@@ -13,14 +13,7 @@ NU = 0.1
 MU = {(1, 1): 0.31, (2, 2): 0.26, (1, 2): 0.26}
 COR = 0.2
 
-RUN = """
-units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-comm_modify vel yes
-read_data ${data}
-PAIR_LINES
+RUN = lmprun.packing_head() + """PAIR_LINES
 timestep 1e-6
 fix 1 all nve/sphere
 compute nc all contact/atom
