@@ -125,19 +125,6 @@ struct LaneOut {
   double fn, fne, delta, r;
 };
 
-// onto_plane() of vec3.h with one square root and one division instead of two and one:
-// a without its component along n, scaled back to a's length (0 when nothing is left)
-TBAGS_INLINE vec::V3 onto_plane_lane(const vec::V3 &a, const vec::V3 &n)
-{
-  using namespace vec;
-  const double an = dot(a, n);
-  const double mag2 = dot(a, a);
-  const V3 b = a - an * n;
-  const double prj2 = dot(b, b);
-  const double s = prj2 > 0.0 ? std::sqrt(mag2 / prj2) : 0.0;
-  return s * b;
-}
-
 // Geometry and normal part of contact_lane (below): unit normal n, tangential relative velocity
 // vtr at the contact point, contact radius a, sqrt(m* a) and the normal force (o.fn, o.fne,
 // o.delta, o.r set).
@@ -185,7 +172,7 @@ TBAGS_INLINE void contact_lane_t(const Params &p, const vec::V3 &n, const vec::V
   const double fscrit = p.mu * fncrit;
   if (UPDATE) {
     const bool rot = std::fabs(dot(ht, n)) * kts > FRAME_EPS * fscrit;
-    ht = select(rot, onto_plane_lane(ht, n), ht) + dt * vtr;
+    ht = select(rot, onto_plane(ht, n), ht) + dt * vtr;
   }
   V3 fs = (-damp_t) * vtr - kts * ht;
   const double fs2 = dot(fs, fs);
@@ -238,7 +225,7 @@ TBAGS_INLINE void contact_lane_roll(const Params &p, const vec::V3 &n, double a,
     V3 h = hr;
     if (UPDATE) {
       const bool rot = std::fabs(dot(h, n)) * ks > FRAME_EPS * frcrit;
-      h = select(rot, onto_plane_lane(h, n), h) + dt * vrl;
+      h = select(rot, onto_plane(h, n), h) + dt * vrl;
     }
     fr = (-ks) * h;
     const double fr2 = dot(fr, fr);

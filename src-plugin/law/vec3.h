@@ -23,14 +23,15 @@ inline void cross(const double *a, const double *b, double *c)
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 // Remove the component of a along the unit vector n and restore a's length
-// (rotation of a history vector onto the current tangent plane).
+// (rotation of a history vector onto the current tangent plane); one square root and one
+// division: the scale is sqrt(|a|^2 / |a - (a.n) n|^2), 0 when nothing is left.
 inline void rotate_onto_plane(double *a, const double *n)
 {
   const double an = dot(a, n);
-  const double mag = len(a);
+  const double mag2 = dot(a, a);
   a[0] -= an * n[0]; a[1] -= an * n[1]; a[2] -= an * n[2];
-  const double prj = len(a);
-  scale(prj > 0.0 ? mag / prj : 0.0, a);
+  const double prj2 = dot(a, a);
+  scale(prj2 > 0.0 ? std::sqrt(mag2 / prj2) : 0.0, a);
 }
 
 
@@ -58,10 +59,10 @@ inline V3 select(bool c, const V3 &a, const V3 &b)
 inline V3 onto_plane(const V3 &a, const V3 &n)
 {
   const double an = dot(a, n);
-  const double mag = std::sqrt(dot(a, a));
+  const double mag2 = dot(a, a);
   const V3 b = a - an * n;
-  const double prj = std::sqrt(dot(b, b));
-  const double s = prj > 0.0 ? mag / prj : 0.0;
+  const double prj2 = dot(b, b);
+  const double s = prj2 > 0.0 ? std::sqrt(mag2 / prj2) : 0.0;
   return s * b;
 }
 
