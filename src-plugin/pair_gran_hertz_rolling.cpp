@@ -637,15 +637,14 @@ void PairGranHertzRolling::compute(int eflag, int vflag)
   const bool sb = atom->molecular != Atom::ATOMIC &&
       (neighbor->special_flag[1] == 2 || neighbor->special_flag[2] == 2 ||
        neighbor->special_flag[3] == 2);
-  if (sb) {
-    if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true, true>() : eval<law::ROLLING_EPSD, false, true>();
-    else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true, true>() : eval<law::ROLLING_CDT, false, true>();
-    else upd ? eval<law::ROLLING_NONE, true, true>() : eval<law::ROLLING_NONE, false, true>();
-  } else {
-    if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true, false>() : eval<law::ROLLING_EPSD, false, false>();
-    else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true, false>() : eval<law::ROLLING_CDT, false, false>();
-    else upd ? eval<law::ROLLING_NONE, true, false>() : eval<law::ROLLING_NONE, false, false>();
-  }
+  sb ? eval_rolling<true>(upd) : eval_rolling<false>(upd);
+}
+
+template <bool SB> void PairGranHertzRolling::eval_rolling(bool upd)
+{
+  if (rolling == law::ROLLING_EPSD) upd ? eval<law::ROLLING_EPSD, true, SB>() : eval<law::ROLLING_EPSD, false, SB>();
+  else if (rolling == law::ROLLING_CDT) upd ? eval<law::ROLLING_CDT, true, SB>() : eval<law::ROLLING_CDT, false, SB>();
+  else upd ? eval<law::ROLLING_NONE, true, SB>() : eval<law::ROLLING_NONE, false, SB>();
 }
 
 /* ----------------------------------------------------------------------

@@ -105,6 +105,7 @@ class PairGranHertzRolling : public Pair {
   inline void pack_atoms();
 
   void allocate();
+  template <bool SB> void eval_rolling(bool update_history);    // eval() for the rolling model
   template <int ROLL, bool UPDATE, bool SB> void eval();
   template <int ROLL, bool UPDATE, bool SB, bool UNI>
   TBAGS_TARGET_AVX2 void eval_avx2(const tbags::contact::Params *puni);
