@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
 """Pair benchmark: tbags gran/hertz/rolling against stock pair granular (hertz/material, mindlin,
 coeff_restitution, rolling sds) on the same dense polydisperse MODEL.md sand packing, in one
-invocation, serial and on 2 ranks. Prints ns per contact per step (pair time) and the ratio.
+invocation, serial and on 2 ranks. Prints ns per contact per step (pair time) and the ratio:
+the two styles alternate --repeat times (the machine's speed drifts between runs) and the median
+of the pairwise ratios is the result.
 Both styles run the same deck (same neighbor settings: the runs report their neighbor list
 builds, none in 1000 steps by default), so only pair compute() differs.
 
 --callgrind S: instead, count instructions (valgrind callgrind, 1 rank, S steps) in pair
 compute() per contact-step: independent of machine load, for comparing kernels.
 
-usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2] [--callgrind S]
+usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2] [--repeat K] [--callgrind S]
 """
 import argparse
 import os
@@ -16,6 +18,7 @@ import re
 import subprocess
 import sys
 from pathlib import Path
+from statistics import median
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "decks"))
@@ -70,6 +73,8 @@ def main():
     ap.add_argument("--rep", type=int, default=2, help="replicate the packing rep^3 times (2: 32,000 atoms)")
     ap.add_argument("--steps", type=int, default=1000)
     ap.add_argument("--ranks", default="1,2")
+    ap.add_argument("--repeat", type=int, default=3,
+                    help="alternating runs of the two styles per rank count (median reported)")
     ap.add_argument("--phi", type=float, default=0.66)
     ap.add_argument("--callgrind", type=int, default=0, metavar="S",
                     help="instructions per contact-step over S steps instead of timings")
@@ -99,15 +104,23 @@ def main():
         return
     print("%-6s %-22s %8s %10s %12s %14s %8s" % ("ranks", "style", "atoms", "contacts", "pair time s",
                                                  "ns/contact/step", "nbuilds"))
+    ours, stock = (name for name, _ in styles)
     for ranks in [int(r) for r in args.ranks.split(",")]:
-        r = {}
-        for name, lines in styles:
-            r[name] = run_one(lines, data, args.rep, args.steps, ranks, wd / name.split()[0])
-            x = r[name]
-            print("%-6d %-22s %8d %10.0f %12.3f %14.1f %8d" % (ranks, name, x["atoms"], x["contacts"],
-                                                             x["pair"], x["ns"], x["builds"]), flush=True)
-        ratio = r["stock granular"]["ns"] / r["tbags gran/hertz/rolling"]["ns"]
-        print("%-6d speed-up of tbags over stock (pair time per contact-step): %.2fx" % (ranks, ratio))
+        # the two styles alternate, repeat times: on a shared machine the speed drifts by 10 %
+        # over minutes, so each ratio compares neighbouring runs and the median is reported
+        ratios, ns = [], {name: [] for name, _ in styles}
+        for k in range(args.repeat):
+            r = {}
+            for name, lines in styles:
+                r[name] = x = run_one(lines, data, args.rep, args.steps, ranks, wd / name.split()[0])
+                ns[name].append(x["ns"])
+                print("%-6d %-22s %8d %10.0f %12.3f %14.1f %8d" % (ranks, name, x["atoms"], x["contacts"],
+                                                                 x["pair"], x["ns"], x["builds"]), flush=True)
+            ratios.append(r[stock]["ns"] / r[ours]["ns"])
+        print("%-6d median ns/contact/step: tbags %.1f, stock %.1f; speed-up of tbags over stock "
+              "(pair time per contact-step): %.2fx (median of %d alternating pairs, range %.2f-%.2f)"
+              % (ranks, median(ns[ours]), median(ns[stock]), median(ratios), len(ratios),
+                 min(ratios), max(ratios)), flush=True)
 
 
 if __name__ == "__main__":
