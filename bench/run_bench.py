@@ -13,7 +13,6 @@ compute() per contact-step: independent of machine load, for comparing kernels.
 usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2] [--repeat K] [--callgrind S]
 """
 import argparse
-import os
 import re
 import subprocess
 import sys
