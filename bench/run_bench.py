@@ -93,29 +93,28 @@ def main():
             sys.exit("bench: only %d of %d atoms inserted" % (natoms, args.atoms_per_cell))
         made.rename(data)
     styles = (("tbags gran/hertz/rolling", OURS), ("stock granular", STOCK))
+    ours, stock = (name for name, _ in styles)
     if args.callgrind:
         r = {}
         for name, lines in styles:
             r[name], c = callgrind_one(lines, data, args.rep, args.callgrind, wd / ("cg-" + name.split()[0]))
             print("%-24s %10.0f contacts %8.1f instructions per contact-step in pair compute()"
                   % (name, c, r[name]), flush=True)
-        print("stock / tbags: %.2fx" % (r["stock granular"] / r["tbags gran/hertz/rolling"]))
+        print("stock / tbags: %.2fx" % (r[stock] / r[ours]))
         return
     print("%-6s %-22s %8s %10s %12s %14s %8s" % ("ranks", "style", "atoms", "contacts", "pair time s",
                                                  "ns/contact/step", "nbuilds"))
-    ours, stock = (name for name, _ in styles)
     for ranks in [int(r) for r in args.ranks.split(",")]:
         # the two styles alternate, repeat times: on a shared machine the speed drifts by 10 %
         # over minutes, so each ratio compares neighbouring runs and the median is reported
-        ratios, ns = [], {name: [] for name, _ in styles}
-        for k in range(args.repeat):
-            r = {}
+        ns = {name: [] for name, _ in styles}
+        for _ in range(args.repeat):
             for name, lines in styles:
-                r[name] = x = run_one(lines, data, args.rep, args.steps, ranks, wd / name.split()[0])
+                x = run_one(lines, data, args.rep, args.steps, ranks, wd / name.split()[0])
                 ns[name].append(x["ns"])
                 print("%-6d %-22s %8d %10.0f %12.3f %14.1f %8d" % (ranks, name, x["atoms"], x["contacts"],
                                                                  x["pair"], x["ns"], x["builds"]), flush=True)
-            ratios.append(r[stock]["ns"] / r[ours]["ns"])
+        ratios = [s / o for o, s in zip(ns[ours], ns[stock])]
         print("%-6d median ns/contact/step: tbags %.1f, stock %.1f; speed-up of tbags over stock "
               "(pair time per contact-step): %.2fx (median of %d alternating pairs, range %.2f-%.2f)"
               % (ranks, median(ns[ours]), median(ns[stock]), median(ratios), len(ratios),
