@@ -87,9 +87,11 @@ void BondBPMYarn::init_style()
                "atom styles use bond_style yarn", STYLE);
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "{} requires ghost velocities: add 'comm_modify vel yes'", STYLE);
-  if (modify->get_fix_by_style("^nve/bpm/sphere").empty() && comm->me == 0 && !warned_integrator++)
-    error->warning(FLERR, "{}: particles with bending/twisting bonds should be integrated with "
-                   "fix nve/bpm/sphere (orientations and torques)", STYLE);
+  // the law is incremental (no particle orientations): any integrator of rotations will do
+  if (modify->get_fix_by_style("^nve/sphere").empty() &&
+      modify->get_fix_by_style("^nve/bpm/sphere").empty() && comm->me == 0 && !warned_integrator++)
+    error->warning(FLERR, "{}: particles with bending/twisting bonds need their rotations "
+                   "integrated: fix nve/sphere (or nve/bpm/sphere)", STYLE);
 }
 
 /* ----------------------------------------------------------------------

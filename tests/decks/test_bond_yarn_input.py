@@ -43,14 +43,16 @@ def write_table(path, rows, header="N %d"):
     return path
 
 
-def test_good_deck_runs(tmp_path):
-    res = lmprun.run(deck(), tmp_path).check()
-    assert "WARNING" not in res.output or "nve/bpm/sphere" not in res.output
+@pytest.mark.parametrize("fix", ["fix 1 all nve/bpm/sphere", "fix 1 all nve/sphere"])
+def test_good_deck_runs(tmp_path, fix):
+    # the law reads no orientations: either integrator of rotations, no warning
+    res = lmprun.run(deck(fix=fix), tmp_path).check()
+    assert "rotations integrated" not in res.output
 
 
 def test_missing_integrator_warns(tmp_path):
     res = lmprun.run(deck(fix=""), tmp_path).check()
-    assert "should be integrated with fix nve/bpm/sphere" in res.output
+    assert "need their rotations integrated: fix nve/sphere" in res.output
 
 
 @pytest.mark.parametrize("rows,message", [
