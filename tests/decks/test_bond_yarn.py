@@ -170,6 +170,7 @@ def test_cantilever_tip_deflection(tmp_path):
 def test_orientations_not_used(tmp_path):
     """The law is incremental: integrating the rotations with nve/sphere (no quaternions) moves
     the cantilever as nve/bpm/sphere does, to round-off (their inertia factors round apart)."""
+    assert "fix integrate free nve/bpm/sphere" in CANTILEVER and "run 300000" in CANTILEVER
     tips = []
     for fix in ("nve/bpm/sphere", "nve/sphere"):
         deck = (CANTILEVER.replace("BONDEXTRA", "").replace("free nve/bpm/sphere", "free " + fix)
