@@ -108,12 +108,6 @@ struct Result {
 
 inline bool touching(double rsq, double radsum) { return rsq < radsum * radsum; }
 
-#if defined(__GNUC__)
-#define TBAGS_INLINE inline __attribute__((always_inline))
-#else
-#define TBAGS_INLINE inline
-#endif
-
 // One contact as values, branch-free (conditions are selects), so that the pair style can run
 // it over a batch of contacts in SIMD lanes; every other entry point calls it too.
 // In: dx = x_i - x_j (wall: as Contact), vr = v_i - v_j, angular velocities wi, wj.

@@ -4,6 +4,13 @@
 
 #include <cmath>
 
+// forced inlining of the laws' hot functions into their loops (values stay in registers)
+#if defined(__GNUC__)
+#define TBAGS_INLINE inline __attribute__((always_inline))
+#else
+#define TBAGS_INLINE inline
+#endif
+
 namespace tbags {
 namespace vec {
 
