@@ -305,9 +305,9 @@ namespace {
 using Batch = PairGranHertzRolling::Batch;
 typedef double v4d __attribute__((vector_size(32), may_alias));    // AtomX, aligned
 
-// UNI: one set of constants for all lanes, pu, with rolling on (mu_r > 0) or off for all, and
-// no special-bond factors; else constants b.p and factors b.factor per lane
-template <int ROLL, bool UPDATE, bool UNI>
+// UNI: one set of constants for all lanes, pu, with rolling on (mu_r > 0) or off for all; else
+// constants b.p per lane. FAC: special-bond factors b.factor per lane (never with UNI)
+template <int ROLL, bool UPDATE, bool UNI, bool FAC>
 TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
   using tbags::vec::V3;
@@ -360,7 +360,7 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     b.h[0][l] = ht.x;
     b.h[1][l] = ht.y;
     b.h[2][l] = ht.z;
-    const double fl = UNI ? 1.0 : b.factor[l];    // special bonds: exact no-op for 1
+    const double fl = FAC ? b.factor[l] : 1.0;    // special-bond factors (FAC), else none
     b.f[0][l] = o.f.x * fl;
     b.f[1][l] = o.f.y * fl;
     b.f[2][l] = o.f.z * fl;
@@ -401,7 +401,7 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     }
     const V3 ti{b.ti[0][l], b.ti[1][l], b.ti[2][l]}, tj{b.tj[0][l], b.tj[1][l], b.tj[2][l]};
     const V3 tis = tbags::vec::select(on, ti + troll, ti), tjs = tbags::vec::select(on, tj - troll, tj);
-    const double fl = UNI ? 1.0 : b.factor[l];
+    const double fl = FAC ? b.factor[l] : 1.0;
     b.ti[0][l] = tis.x * fl;
     b.ti[1][l] = tis.y * fl;
     b.ti[2][l] = tis.z * fl;
@@ -411,18 +411,18 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
   }
 }
 
-template <int ROLL, bool UPDATE, bool UNI>
+template <int ROLL, bool UPDATE, bool UNI, bool FAC>
 void law_lanes_base(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
-  law_lanes<ROLL, UPDATE, UNI>(b, n, dt, clip, pu);
+  law_lanes<ROLL, UPDATE, UNI, FAC>(b, n, dt, clip, pu);
 }
 
 #ifdef TBAGS_HAVE_AVX2_CLONE
-template <int ROLL, bool UPDATE, bool UNI>
+template <int ROLL, bool UPDATE, bool UNI, bool FAC>
 __attribute__((target("avx2"))) void law_lanes_avx2(Batch &b, int n, double dt, bool clip,
                                                     const law::Params *pu)
 {
-  law_lanes<ROLL, UPDATE, UNI>(b, n, dt, clip, pu);
+  law_lanes<ROLL, UPDATE, UNI, FAC>(b, n, dt, clip, pu);
 }
 #endif
 
@@ -613,18 +613,19 @@ template <int NH> inline void rows_hist(Batch &b, int n, bool avx2)
   rows_hist_scalar<NH>(b, 0, n);
 }
 
-// pu: the constants of all lanes (UNI above), else nullptr (per-lane b.p and b.factor)
-template <int ROLL, bool UPDATE>
+// pu: the constants of all lanes (UNI above), else nullptr (per-lane b.p); FAC: per-lane
+// special-bond factors b.factor (never with pu)
+template <int ROLL, bool UPDATE, bool FAC>
 void batch_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Params *pu)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
   if (avx2) {
-    if (pu) return law_lanes_avx2<ROLL, UPDATE, true>(b, n, dt, clip, pu);
-    return law_lanes_avx2<ROLL, UPDATE, false>(b, n, dt, clip, pu);
+    if (!FAC && pu) return law_lanes_avx2<ROLL, UPDATE, true, false>(b, n, dt, clip, pu);
+    return law_lanes_avx2<ROLL, UPDATE, false, FAC>(b, n, dt, clip, pu);
   }
 #endif
-  if (pu) return law_lanes_base<ROLL, UPDATE, true>(b, n, dt, clip, pu);
-  law_lanes_base<ROLL, UPDATE, false>(b, n, dt, clip, pu);
+  if (!FAC && pu) return law_lanes_base<ROLL, UPDATE, true, false>(b, n, dt, clip, pu);
+  law_lanes_base<ROLL, UPDATE, false, FAC>(b, n, dt, clip, pu);
 }
 }    // namespace
 
@@ -783,7 +784,7 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
   constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
   auto flush = [&](int n) {
     hist_rows<NH>(b, n, simd_avx2);
-    batch_law<ROLL, UPDATE>(b, n, update->dt, limit_damping, simd_avx2, puni);
+    batch_law<ROLL, UPDATE, SB>(b, n, update->dt, limit_damping, simd_avx2, puni);
     rows_hist<NH>(b, n, simd_avx2);
 #ifdef TBAGS_HAVE_AVX2_CLONE
     if (simd_avx2 && !evflag) {
@@ -795,8 +796,6 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
     if (force->newton_pair) evflag ? batch_scatter<NH, 1, 1>(n) : batch_scatter<NH, 1, 0>(n);
     else evflag ? batch_scatter<NH, 0, 1>(n) : batch_scatter<NH, 0, 0>(n);
   };
-  if (!SB && !UNI)
-    for (int l = 0; l < Batch::N; l++) b.factor[l] = 1.0;    // used when !puni
 
   int n = 0;
   for (int ii = 0; ii < inum; ii++) {
