@@ -87,6 +87,20 @@ def packing_head(newton=None):
             + ("newton %s\n" % newton if newton else "") + "read_data ${data}\n")
 
 
+# deck head for a few bonded bpm/sphere particles placed by create_atoms (the bond tests, the
+# pair's special-bond test): an atom map, newton_bond off, room for bonds and special partners
+BPM_HEAD = """
+units si
+atom_style bpm/sphere
+atom_modify map array
+boundary f f f
+comm_modify vel yes
+newton on off
+region box block -0.01 0.07 -0.02 0.02 -0.02 0.02
+create_box 1 box bond/types 1 extra/bond/per/atom 2 extra/special/per/atom 4
+"""
+
+
 # deck tail that records every contact through compute pair/local (single()) and the per-atom
 # forces of compute(): contact_force_sums() then compares the two
 CONTACT_DUMP = """

@@ -19,16 +19,7 @@ def table():
 
 
 A = math.pi * 1e-3 ** 2 / 4
-HEAD = """
-units si
-atom_style bpm/sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-newton on off
-region box block -0.01 0.07 -0.02 0.02 -0.02 0.02
-create_box 1 box bond/types 1 extra/bond/per/atom 2 extra/special/per/atom 4
-"""
+HEAD = lmprun.BPM_HEAD
 PAIR_NONE = """special_bonds lj 0 1 1 coul 1 1 1
 pair_style zero 0.006
 pair_coeff * *

@@ -7,15 +7,7 @@ import pytest
 
 import lmprun
 
-DECK = """
-units si
-atom_style bpm/sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-newton on off
-region box block -0.01 0.02 -0.01 0.01 -0.01 0.01
-create_box 1 box bond/types 1 extra/bond/per/atom 2 extra/special/per/atom 4
+DECK = lmprun.BPM_HEAD + """
 create_atoms 1 single 0 0 0
 create_atoms 1 single 0.0049 0.0003 0.0001
 create_atoms 1 single -0.0049 0.0002 -0.0001
