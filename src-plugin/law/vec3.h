@@ -16,7 +16,6 @@ namespace vec {
 
 inline double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline double len(const double *a) { return std::sqrt(dot(a, a)); }
-inline void scale(double s, double *a) { a[0] *= s; a[1] *= s; a[2] *= s; }
 inline void copy(const double *a, double *b) { b[0] = a[0]; b[1] = a[1]; b[2] = a[2]; }
 inline void zero(double *a) { a[0] = a[1] = a[2] = 0.0; }
 inline void sub(const double *a, const double *b, double *c)
@@ -29,18 +28,6 @@ inline void cross(const double *a, const double *b, double *c)
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
-// Remove the component of a along the unit vector n and restore a's length
-// (rotation of a history vector onto the current tangent plane); one square root and one
-// division: the scale is sqrt(|a|^2 / |a - (a.n) n|^2), 0 when nothing is left.
-inline void rotate_onto_plane(double *a, const double *n)
-{
-  const double an = dot(a, n);
-  const double mag2 = dot(a, a);
-  a[0] -= an * n[0]; a[1] -= an * n[1]; a[2] -= an * n[2];
-  const double prj2 = dot(a, a);
-  scale(prj2 > 0.0 ? std::sqrt(mag2 / prj2) : 0.0, a);
-}
-
 
 // 3-vector by value, for the branch-free contact kernel (the compiler keeps it in registers
 // and can run the kernel over several contacts in SIMD lanes). Same operation order as above.
@@ -62,7 +49,9 @@ inline V3 select(bool c, const V3 &a, const V3 &b)
 {
   return V3{c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
 }
-// rotate_onto_plane() above as a value: a without its component along n, at a's length
+// Remove the component of a along the unit vector n and restore a's length
+// (rotation of a history vector onto the current tangent plane); one square root and one
+// division: the scale is sqrt(|a|^2 / |a - (a.n) n|^2), 0 when nothing is left.
 inline V3 onto_plane(const V3 &a, const V3 &n)
 {
   const double an = dot(a, n);
@@ -72,6 +61,8 @@ inline V3 onto_plane(const V3 &a, const V3 &n)
   const double s = prj2 > 0.0 ? std::sqrt(mag2 / prj2) : 0.0;
   return s * b;
 }
+// onto_plane() in place on a 3-array (the bond laws' history)
+inline void rotate_onto_plane(double *a, const double *n) { store3(onto_plane(load3(a), load3(n)), a); }
 
 }    // namespace vec
 }    // namespace tbags
