@@ -227,6 +227,11 @@ def tagged(out, tag):
     return lines[-1]
 
 
+# restart files of the plugin: 2 since the pair's contact history is in fix NEIGH_HISTORY/TBAGS
+# (samples prepared before carry it under NEIGH_HISTORY, which read_restart no longer restores)
+RESTART_FORMAT = 2
+
+
 def deck_hash(*names):
     """Short hash of the decks a run depends on: an edited deck is not served from the cache."""
     h = hashlib.sha256()
@@ -276,9 +281,9 @@ class Calibration:
     # ---- samples ------------------------------------------------------------------------
     def prep_key(self, p, E):
         a = self.a
-        return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s_deck%s" % (fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width),
-                                                            fmt(a.height), a.seed, fmt(a.dt),
-                                                            deck_hash("in.triax_prep", "cell.inc"))
+        return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s_deck%s_r%d" % (
+            fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width), fmt(a.height), a.seed, fmt(a.dt),
+            deck_hash("in.triax_prep", "cell.inc"), RESTART_FORMAT)
 
     def sample(self, p, E):
         """Restart file of the sample at sigma3 = p MPa (void ratio within tolerance)."""

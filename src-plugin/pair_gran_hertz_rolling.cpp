@@ -243,7 +243,8 @@ void PairGranHertzRolling::init_style()
   if (fix_history == nullptr) {
     fix_history = dynamic_cast<FixNeighHistory *>(
         modify->replace_fix("NEIGH_HISTORY_GHR_DUMMY",
-                            "NEIGH_HISTORY_GHR all NEIGH_HISTORY " + std::to_string(size_history),
+                            "NEIGH_HISTORY_GHR all NEIGH_HISTORY/TBAGS " +
+                                std::to_string(size_history),
                             1));
     fix_history->pair = this;
   } else {
@@ -306,10 +307,13 @@ using Batch = PairGranHertzRolling::Batch;
 typedef double v4d __attribute__((vector_size(32), may_alias));    // AtomX, aligned
 
 // UNI: one set of constants for all lanes, pu, with rolling on (mu_r > 0) or off for all; else
-// constants b.p per lane. FAC: special-bond factors b.factor per lane (never with UNI)
-template <int ROLL, bool UPDATE, bool UNI, bool FAC>
-TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
+// constants b.p per lane. FAC: special-bond factors b.factor per lane (never with UNI).
+// FAST: the law's fast path (contact_lane_t); returns whether a lane needs the full law, which
+// is then to be run over the batch again, from the old history (hist_rows()).
+template <int ROLL, bool UPDATE, bool UNI, bool FAC, bool FAST>
+TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
+  int redo = 0;
   using tbags::vec::V3;
   // three loops (shorter dependency chains and fewer live values in each): normal, tangential,
   // rolling; contact_lane() is the three parts in one
@@ -348,15 +352,16 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     b.reff[l] = reff;
   }
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
-#pragma omp simd
+#pragma omp simd reduction(| : redo)
 #endif
   for (int l = 0; l < n; l++) {
     V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
     law::LaneOut o;
     const double fn = b.fn[l];
-    law::contact_lane_t<UPDATE>(UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
-                                V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, b.a[l], b.sqma[l], fn,
-                                b.delta[l], b.radi[l], b.radj[l], false, dt, ht, o);
+    redo |= law::contact_lane_t<UPDATE, FAST>(
+        UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
+        V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, b.a[l], b.sqma[l], fn, b.delta[l], b.radi[l],
+        b.radj[l], false, dt, ht, o);
     b.h[0][l] = ht.x;
     b.h[1][l] = ht.y;
     b.h[2][l] = ht.z;
@@ -380,20 +385,19 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
       b.tj[2][l] = o.tj.z;
     }
   }
-  if (ROLL == law::ROLLING_NONE) return;
+  if (ROLL == law::ROLLING_NONE) return redo != 0;
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
-#pragma omp simd
+#pragma omp simd reduction(| : redo)
 #endif
   for (int l = 0; l < n; l++) {
     V3 hr{0.0, 0.0, 0.0};
     if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
     V3 fr, troll;
     bool on;
-    law::contact_lane_roll<ROLL, UPDATE, UNI>(UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
-                                              b.a[l], std::fabs(b.fn[l]), b.reff[l],
-                                              V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
-                                              V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, dt, hr, fr,
-                                              troll, on);
+    redo |= law::contact_lane_roll<ROLL, UPDATE, UNI, FAST>(
+        UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]}, b.a[l], std::fabs(b.fn[l]),
+        b.reff[l], V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+        V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, dt, hr, fr, troll, on);
     if (ROLL == law::ROLLING_EPSD) {
       b.h[3][l] = hr.x;
       b.h[4][l] = hr.y;
@@ -409,20 +413,21 @@ TBAGS_INLINE void law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     b.tj[1][l] = tjs.y * fl;
     b.tj[2][l] = tjs.z * fl;
   }
+  return redo != 0;
 }
 
-template <int ROLL, bool UPDATE, bool UNI, bool FAC>
-void law_lanes_base(Batch &b, int n, double dt, bool clip, const law::Params *pu)
+template <int ROLL, bool UPDATE, bool UNI, bool FAC, bool FAST>
+bool law_lanes_base(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
-  law_lanes<ROLL, UPDATE, UNI, FAC>(b, n, dt, clip, pu);
+  return law_lanes<ROLL, UPDATE, UNI, FAC, FAST>(b, n, dt, clip, pu);
 }
 
 #ifdef TBAGS_HAVE_AVX2_CLONE
-template <int ROLL, bool UPDATE, bool UNI, bool FAC>
-__attribute__((target("avx2"))) void law_lanes_avx2(Batch &b, int n, double dt, bool clip,
+template <int ROLL, bool UPDATE, bool UNI, bool FAC, bool FAST>
+__attribute__((target("avx2"))) bool law_lanes_avx2(Batch &b, int n, double dt, bool clip,
                                                     const law::Params *pu)
 {
-  law_lanes<ROLL, UPDATE, UNI, FAC>(b, n, dt, clip, pu);
+  return law_lanes<ROLL, UPDATE, UNI, FAC, FAST>(b, n, dt, clip, pu);
 }
 #endif
 
@@ -614,18 +619,18 @@ template <int NH> inline void rows_hist(Batch &b, int n, bool avx2)
 }
 
 // pu: the constants of all lanes (UNI above), else nullptr (per-lane b.p); FAC: per-lane
-// special-bond factors b.factor (never with pu)
-template <int ROLL, bool UPDATE, bool FAC>
-void batch_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Params *pu)
+// special-bond factors b.factor (never with pu). FAST: as law_lanes().
+template <int ROLL, bool UPDATE, bool FAC, bool FAST>
+bool batch_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Params *pu)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
   if (avx2) {
-    if (!FAC && pu) return law_lanes_avx2<ROLL, UPDATE, true, false>(b, n, dt, clip, pu);
-    return law_lanes_avx2<ROLL, UPDATE, false, FAC>(b, n, dt, clip, pu);
+    if (!FAC && pu) return law_lanes_avx2<ROLL, UPDATE, true, false, FAST>(b, n, dt, clip, pu);
+    return law_lanes_avx2<ROLL, UPDATE, false, FAC, FAST>(b, n, dt, clip, pu);
   }
 #endif
-  if (!FAC && pu) return law_lanes_base<ROLL, UPDATE, true, false>(b, n, dt, clip, pu);
-  law_lanes_base<ROLL, UPDATE, false, FAC>(b, n, dt, clip, pu);
+  if (!FAC && pu) return law_lanes_base<ROLL, UPDATE, true, false, FAST>(b, n, dt, clip, pu);
+  return law_lanes_base<ROLL, UPDATE, false, FAC, FAST>(b, n, dt, clip, pu);
 }
 }    // namespace
 
@@ -784,7 +789,11 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
   constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
   auto flush = [&](int n) {
     hist_rows<NH>(b, n, simd_avx2);
-    batch_law<ROLL, UPDATE, SB>(b, n, update->dt, limit_damping, simd_avx2, puni);
+    // the fast path; in the rare batch where a contact needs the full law, all again with it
+    if (batch_law<ROLL, UPDATE, SB, true>(b, n, update->dt, limit_damping, simd_avx2, puni)) {
+      hist_rows<NH>(b, n, simd_avx2);
+      batch_law<ROLL, UPDATE, SB, false>(b, n, update->dt, limit_damping, simd_avx2, puni);
+    }
     rows_hist<NH>(b, n, simd_avx2);
 #ifdef TBAGS_HAVE_AVX2_CLONE
     if (simd_avx2 && !evflag) {

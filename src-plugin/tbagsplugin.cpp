@@ -5,11 +5,12 @@
 
 #include "bond_bpm_yarn.h"
 #include "bond_yarn.h"
+#include "fix_neigh_history_tbags.h"
 #include "fix_wall_gran_servo.h"
 #include "pair_gran_hertz_rolling.h"
 
 #ifndef TBAGS_VERSION
-#define TBAGS_VERSION "0.1.0"
+#define TBAGS_VERSION "0.2.0"
 #endif
 
 using namespace LAMMPS_NS;
@@ -22,6 +23,11 @@ static Pair *pair_gran_hertz_rolling_creator(LAMMPS *lmp)
 static Fix *fix_wall_gran_servo_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixWallGranServo(lmp, argc, argv);
+}
+
+static Fix *fix_neigh_history_tbags_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixNeighHistoryTbags(lmp, argc, argv);
 }
 
 static Bond *bond_bpm_yarn_creator(LAMMPS *lmp)
@@ -52,6 +58,12 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "wall/gran/servo";
   plugin.info = "tbags " TBAGS_VERSION ": rigid plate with force servo, gran/hertz/rolling contact law";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_gran_servo_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  // internal: the contact history store that pair gran/hertz/rolling creates
+  plugin.name = "NEIGH_HISTORY/TBAGS";
+  plugin.info = "tbags " TBAGS_VERSION ": contact history of gran/hertz/rolling (internal)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_neigh_history_tbags_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "bond";

@@ -152,8 +152,11 @@ TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, 
 
 // Tangential part of contact_lane, from contact_lane_n()'s results: o.f, o.ti, o.tj (without
 // rolling), o.fs; o.fr zero.
-template <bool UPDATE>
-TBAGS_INLINE void contact_lane_t(const Params &p, const vec::V3 &n, const vec::V3 &vtr, double a,
+// FAST (the pair's SIMD loop): the history rotated only by the series; returns true when the
+// tilt is too large for it (rare): the caller must then redo the contact without FAST, from
+// the old history. When it returns false, ht and o are bit for bit the full law's.
+template <bool UPDATE, bool FAST = false>
+TBAGS_INLINE bool contact_lane_t(const Params &p, const vec::V3 &n, const vec::V3 &vtr, double a,
                                  double sqma, double fn, double delta, double radi, double radj,
                                  bool wall, double dt, vec::V3 &ht, LaneOut &o)
 {
@@ -164,9 +167,14 @@ TBAGS_INLINE void contact_lane_t(const Params &p, const vec::V3 &n, const vec::V
   const double damp_t = p.ct * sqma;
   const double kts = p.kt * a;
   const double fscrit = p.mu * fncrit;
+  bool big = false;    // the rotation needs onto_plane_exact()
   if (UPDATE) {
     const bool rot = std::fabs(dot(ht, n)) * kts > FRAME_EPS * fscrit;
-    ht = select(rot, onto_plane(ht, n), ht) + dt * vtr;
+    bool small;
+    V3 hp = onto_plane_series(ht, n, small);
+    if (!FAST) hp = select(small, hp, onto_plane_exact(ht, n));
+    big = rot & !small;
+    ht = select(rot, hp, ht) + dt * vtr;
   }
   V3 fs = (-damp_t) * vtr - kts * ht;
   const double fs2 = dot(fs, fs);
@@ -186,6 +194,7 @@ TBAGS_INLINE void contact_lane_t(const Params &p, const vec::V3 &n, const vec::V
   o.tj = (-armj) * tor;
   o.fr = V3{0.0, 0.0, 0.0};
   o.fs = fs;
+  return FAST && big;
 }
 
 // Normal and tangential part of contact_lane: o without rolling (o.fr zero), and what the
@@ -205,8 +214,10 @@ TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx,
 // Rolling part of contact_lane (ROLL not ROLLING_NONE), from contact_lane_nt()'s n, a and
 // fncrit = |F_n|: the rolling pseudo-force fr and the torque troll = R* n x fr (i gets +troll,
 // j -troll); on: rolling acts (p.mur > 0), else fr, troll and hr are to be left as they were.
-template <int ROLL, bool UPDATE, bool ALLON = false>
-TBAGS_INLINE void contact_lane_roll(const Params &p, const vec::V3 &n, double a, double fncrit,
+// FAST: as contact_lane_t(), and no cap either (EPSD: returns whether the exact rotation or the
+// cap, both rare, was needed where rolling acts); CDT has no such cases.
+template <int ROLL, bool UPDATE, bool ALLON = false, bool FAST = false>
+TBAGS_INLINE bool contact_lane_roll(const Params &p, const vec::V3 &n, double a, double fncrit,
                                     double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
                                     vec::V3 &hr, vec::V3 &fr, vec::V3 &troll, bool &on)
 {
@@ -214,19 +225,28 @@ TBAGS_INLINE void contact_lane_roll(const Params &p, const vec::V3 &n, double a,
   on = ALLON || p.mur > 0.0;
   const V3 vrl = reff * cross(wi - wj, n);
   const double frcrit = p.mur * fncrit;
+  bool redo = false;
   if (ROLL == ROLLING_EPSD) {
     const double ks = p.krs * a;
     V3 h = hr;
+    bool big = false;
     if (UPDATE) {
       const bool rot = std::fabs(dot(h, n)) * ks > FRAME_EPS * frcrit;
-      h = select(rot, onto_plane(h, n), h) + dt * vrl;
+      bool small;
+      V3 hp = onto_plane_series(h, n, small);
+      if (!FAST) hp = select(small, hp, onto_plane_exact(h, n));
+      big = rot & !small;
+      h = select(rot, hp, h) + dt * vrl;
     }
     fr = (-ks) * h;
     const double fr2 = dot(fr, fr);
     const bool cap = fr2 > frcrit * frcrit;
-    const double sr = frcrit / std::sqrt(fr2);
-    h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
-    fr = select(cap, sr * fr, fr);
+    if (!FAST) {
+      const double sr = frcrit / std::sqrt(fr2);
+      h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
+      fr = select(cap, sr * fr, fr);
+    }
+    redo = on & (big | cap);
     hr = select(on, h, hr);
   } else {    // CDT: constant magnitude against the rolling velocity
     const double vl = std::sqrt(dot(vrl, vrl));
@@ -234,6 +254,7 @@ TBAGS_INLINE void contact_lane_roll(const Params &p, const vec::V3 &n, double a,
   }
   fr = select(on, fr, V3{0.0, 0.0, 0.0});
   troll = reff * cross(n, fr);
+  return FAST && redo;
 }
 
 // ALLON: the caller knows p.mur > 0 for this contact (rolling acts; no per-lane test)

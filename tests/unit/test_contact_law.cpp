@@ -221,6 +221,88 @@ TEST(Tangential, HistoryRotatedOntoTangentPlaneKeepsLength)
   expect_rel(std::hypot(hist[0], hist[1]), 5e-7);
 }
 
+// The series rotation (no square root) agrees with the exact one to round-off wherever it
+// claims to apply, and hands a large tilt and a zero history to the exact one.
+TEST(Tangential, SeriesRotationMatchesExact)
+{
+  using namespace tbags::vec;
+  const V3 n0{0.3, -0.5, 0.8};
+  const V3 n = (1.0 / std::sqrt(dot(n0, n0))) * n0;
+  const V3 t0 = cross(n, V3{1.0, 0.0, 0.0});
+  const V3 t = (1.0 / std::sqrt(dot(t0, t0))) * t0;    // in the tangent plane
+  int used = 0;
+  for (double tilt : {0.0, 1e-9, 1e-6, 3e-5, 9.9e-4, 1.1e-3, 1e-2, 0.5}) {
+    const V3 a = 2e-7 * t + (2e-7 * tilt) * n;    // (a.n)^2 / |a|^2 about tilt^2
+    bool small;
+    const V3 s = onto_plane_series(a, n, small);
+    const V3 e = onto_plane_exact(a, n);
+    const V3 o = onto_plane(a, n);
+    EXPECT_EQ(small, tilt * tilt / (1.0 + tilt * tilt) < TILT_SERIES) << tilt;
+    const V3 want = small ? s : e;
+    EXPECT_EQ(o.x, want.x);
+    EXPECT_EQ(o.y, want.y);
+    EXPECT_EQ(o.z, want.z);
+    if (small) {
+      used++;
+      const V3 d = s - e;
+      EXPECT_LT(std::sqrt(dot(d, d) / dot(e, e)), 4e-16) << tilt;
+      EXPECT_NEAR(dot(s, n), 0.0, 1e-22);
+      expect_rel(std::sqrt(dot(s, s)), std::sqrt(dot(a, a)), 4e-16);
+    }
+  }
+  EXPECT_EQ(used, 5);
+  bool small = true;
+  onto_plane_series(V3{0.0, 0.0, 0.0}, n, small);
+  EXPECT_FALSE(small);
+  const V3 z = onto_plane(V3{0.0, 0.0, 0.0}, n);
+  EXPECT_EQ(dot(z, z), 0.0);
+}
+
+// The pair's fast path (FAST) gives the full law's bits unless it says it cannot: here a
+// sticking contact (the same), a sliding one (the same: the cap stays in the fast path), a
+// large history tilt and a rolling cap (both handed back).
+TEST(ContactLaw, FastPathIsTheFullLawOrSaysSo)
+{
+  using namespace tbags::vec;
+  const Params p = sand();
+  const V3 n{0.0, 0.0, 1.0}, wi{0.0, 0.0, 0.0};
+  const double a = std::sqrt(1.25e-3 * 1e-5), sqma = std::sqrt(5e-5 * a), fn = 10.0;
+  struct Case {
+    V3 ht, vt, hr, wj;
+    bool redo_t, redo_r;
+  };
+  const Case cases[] = {
+      {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, false},
+      {{1e-4, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, false},
+      {{1e-8, 0.0, 1e-9}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 0.0}, {0.0, 0.0, 0.0}, true, false},
+      {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, true},
+  };
+  for (const Case &k : cases) {
+    V3 h1 = k.ht, h2 = k.ht;
+    LaneOut o1, o2;
+    const bool redo = contact_lane_t<true, true>(p, n, k.vt, a, sqma, fn, 1e-5, 2.5e-3, 2.5e-3,
+                                                 false, 1e-6, h1, o1);
+    contact_lane_t<true>(p, n, k.vt, a, sqma, fn, 1e-5, 2.5e-3, 2.5e-3, false, 1e-6, h2, o2);
+    EXPECT_EQ(redo, k.redo_t);
+    if (!redo) {
+      EXPECT_EQ(h1.x, h2.x);
+      EXPECT_EQ(h1.z, h2.z);
+      EXPECT_EQ(o1.f.x, o2.f.x);
+      EXPECT_EQ(o1.ti.y, o2.ti.y);
+    }
+    V3 r1 = k.hr, r2 = k.hr, fr1, fr2, tr1, tr2;
+    bool on;
+    const bool redo_r = contact_lane_roll<ROLLING_EPSD, true, false, true>(
+        p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, r1, fr1, tr1, on);
+    contact_lane_roll<ROLLING_EPSD, true>(p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, r2, fr2, tr2, on);
+    EXPECT_EQ(redo_r, k.redo_r);
+    if (!redo_r) {
+      EXPECT_EQ(r1.x, r2.x);
+      EXPECT_EQ(tr1.y, tr2.y);
+    }
+  }
+}
+
 TEST(Rolling, EpsdStiffnessAndCap)
 {
   const double mur = 0.05;
