@@ -313,7 +313,7 @@ typedef double v4d __attribute__((vector_size(32), may_alias));    // AtomX, ali
 template <int ROLL, bool UPDATE, bool UNI, bool FAC, bool FAST>
 TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
-  int redo = 0;
+  long long redo = 0;    // 64 bits like the lanes: a 32-bit flag would make the vectoriser take 8 lanes (spills)
   using tbags::vec::V3;
   // three loops (shorter dependency chains and fewer live values in each): normal, tangential,
   // rolling; contact_lane() is the three parts in one
@@ -324,14 +324,14 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     // masses packed negative for frozen atoms (fix freeze): m* is then the other's mass
     const double mis = b.mi[l], mjs = b.mj[l];
     const double mi = std::fabs(mis), mj = std::fabs(mjs);
-    double meff = mi * mj / (mi + mj);
+    const double radi = b.radi[l], radj = b.radj[l], radsum = radi + radj;
+    double meff, reff;
+    law::effective(mi, mj, radi, radj, meff, reff);
     meff = mis < 0.0 ? mj : meff;
     meff = mjs < 0.0 ? mi : meff;
     // r^2 and r_i + r_j as in the gather (same operations, same bits)
     const double dx0 = b.dx[0][l], dx1 = b.dx[1][l], dx2 = b.dx[2][l];
     const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
-    const double radi = b.radi[l], radj = b.radj[l], radsum = radi + radj;
-    const double reff = radi * radj / radsum;
     law::LaneOut o;
     V3 nv, vt;
     double a, sqma;

@@ -121,16 +121,14 @@ class PairGranHertzRolling : public Pair {
                    tbags::contact::Contact &c) const
   {
     const double *rmass = atom->rmass;
-    double meff = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
-    if (atom->mask[i] & freeze_group_bit) meff = rmass[j];
-    if (atom->mask[j] & freeze_group_bit) meff = rmass[i];
+    c.radi = atom->radius[i];
+    c.radj = atom->radius[j];
+    tbags::contact::effective(rmass[i], rmass[j], c.radi, c.radj, c.meff, c.reff);
+    if (atom->mask[i] & freeze_group_bit) c.meff = rmass[j];
+    if (atom->mask[j] & freeze_group_bit) c.meff = rmass[i];
     c.dx = dx;
     c.rsq = rsq;
     c.radsum = radsum;
-    c.radi = atom->radius[i];
-    c.radj = atom->radius[j];
-    c.reff = c.radi * c.radj / radsum;
-    c.meff = meff;
     c.vi = atom->v[i];
     c.vj = atom->v[j];
     c.wi = atom->omega[i];

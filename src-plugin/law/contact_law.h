@@ -108,6 +108,18 @@ struct Result {
 
 inline bool touching(double rsq, double radsum) { return rsq < radsum * radsum; }
 
+// Effective mass m* = m_i m_j / (m_i + m_j) and radius R* = R_i R_j / (R_i + R_j) of a pair,
+// with one division for both (q = 1 / ((m_i + m_j)(R_i + R_j))). A frozen particle (fix
+// freeze) is one of infinite mass: the caller then takes the other's mass for m*.
+TBAGS_INLINE void effective(double mi, double mj, double radi, double radj, double &meff,
+                            double &reff)
+{
+  const double msum = mi + mj, radsum = radi + radj;
+  const double q = 1.0 / (msum * radsum);
+  meff = mi * mj * radsum * q;
+  reff = radi * radj * msum * q;
+}
+
 // One contact as values, branch-free (conditions are selects), so that the pair style can run
 // it over a batch of contacts in SIMD lanes; every other entry point calls it too.
 // In: dx = x_i - x_j (wall: as Contact), vr = v_i - v_j, angular velocities wi, wj.

@@ -61,6 +61,17 @@ TEST(Mixing, TwoMaterialsHertzMindlin)
   expect_rel(mix_G(E1, v1, E2, v2), 1.0 / ((2 - v1) / G1 + (2 - v2) / G2));
 }
 
+TEST(Mixing, EffectiveMassAndRadius)
+{
+  for (const double k : {1.0, 0.37, 5.2, 1e-3}) {
+    const double mi = 1.3e-4, mj = mi * k, ri = 2.1e-3, rj = ri * std::cbrt(k);
+    double meff, reff;
+    effective(mi, mj, ri, rj, meff, reff);
+    expect_rel(meff, mi * mj / (mi + mj), 4e-16);
+    expect_rel(reff, ri * rj / (ri + rj), 4e-16);
+  }
+}
+
 TEST(Normal, HertzForceOverlap)
 {
   const Params p = sand(1.0);    // e = 1: no damping
