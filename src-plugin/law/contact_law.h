@@ -226,8 +226,9 @@ TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx,
 // Rolling part of contact_lane (ROLL not ROLLING_NONE), from contact_lane_nt()'s n, a and
 // fncrit = |F_n|: the rolling pseudo-force fr and the torque troll = R* n x fr (i gets +troll,
 // j -troll); on: rolling acts (p.mur > 0), else fr, troll and hr are to be left as they were.
-// FAST: as contact_lane_t(), and no cap either (EPSD: returns whether the exact rotation or the
-// cap, both rare, was needed where rolling acts); CDT has no such cases.
+// FAST: as contact_lane_t() (EPSD: returns whether the exact rotation was needed where rolling
+// acts; the cap is in the fast path: in long runs many contacts roll at it); CDT has no
+// rotation.
 template <int ROLL, bool UPDATE, bool ALLON = false, bool FAST = false>
 TBAGS_INLINE bool contact_lane_roll(const Params &p, const vec::V3 &n, double a, double fncrit,
                                     double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
@@ -253,12 +254,10 @@ TBAGS_INLINE bool contact_lane_roll(const Params &p, const vec::V3 &n, double a,
     fr = (-ks) * h;
     const double fr2 = dot(fr, fr);
     const bool cap = fr2 > frcrit * frcrit;
-    if (!FAST) {
-      const double sr = frcrit / std::sqrt(fr2);
-      h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
-      fr = select(cap, sr * fr, fr);
-    }
-    redo = on & (big | cap);
+    const double sr = frcrit / std::sqrt(fr2);
+    h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
+    fr = select(cap, sr * fr, fr);
+    redo = on & big;
     hr = select(on, h, hr);
   } else {    // CDT: constant magnitude against the rolling velocity
     const double vl = std::sqrt(dot(vrl, vrl));

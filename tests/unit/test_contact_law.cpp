@@ -270,8 +270,8 @@ TEST(Tangential, SeriesRotationMatchesExact)
 }
 
 // The pair's fast path (FAST) gives the full law's bits unless it says it cannot: here a
-// sticking contact (the same), a sliding one (the same: the cap stays in the fast path), a
-// large history tilt and a rolling cap (both handed back).
+// sticking contact (the same), a sliding one and one at the rolling cap (the same: the caps are
+// in the fast path), and a large tangential or rolling history tilt (handed back).
 TEST(ContactLaw, FastPathIsTheFullLawOrSaysSo)
 {
   using namespace tbags::vec;
@@ -286,7 +286,8 @@ TEST(ContactLaw, FastPathIsTheFullLawOrSaysSo)
       {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, false},
       {{1e-4, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, false},
       {{1e-8, 0.0, 1e-9}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 0.0}, {0.0, 0.0, 0.0}, true, false},
-      {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, true},
+      {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, false},
+      {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 1e-10}, {0.0, 0.0, 0.0}, false, true},
   };
   for (const Case &k : cases) {
     V3 h1 = k.ht, h2 = k.ht;
