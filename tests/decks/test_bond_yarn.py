@@ -285,6 +285,23 @@ def test_sheet_same_on_ranks_and_newton(tmp_path, sheet_data, sheet_ref, ranks, 
     assert b == bonds and dx < 1e-12
 
 
+def test_sheet_write_restart_on_ranks(tmp_path, sheet_data):
+    # a write_restart between runs migrates atoms between ranks (as LAMMPS's neighbor history did
+    # for the pair, see test_pair_mpi) while the bond history fix still holds the run's bond
+    # list: the run after it must be the run without it
+    out = {}
+    for chk in (False, True):
+        wd = tmp_path / ("chk" if chk else "plain")
+        res, b = sheet(wd, sheet_data, 2, "off", checkpoint=chk)
+        out[chk] = (lmprun.read_dump(wd / "sheet.dump"), b)
+    (cols, a), b0 = out[False]
+    (_, r), b1 = out[True]
+    x = [cols.index(c) for c in ("x", "y", "z")]
+    dx = np.abs(a[:, x] - r[:, x]).max()
+    print("2 ranks, write_restart between runs: bonds %d vs %d, max |dx| = %.3e m" % (b1, b0, dx))
+    assert b0 == b1 and dx < 1e-12
+
+
 def test_sheet_restart_continues(sheet_ref):
     wd, bonds = sheet_ref
     res = lmprun.run(SHEET_RESTART, wd, variables={"n2": 1500}).check()
