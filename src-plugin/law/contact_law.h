@@ -162,6 +162,23 @@ TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, 
   o.r = r;
 }
 
+// A spring history h (stiffness k, force cap crit) rotated onto the tangent plane of the unit
+// normal n when it has a normal part (relative to the cap, as stock): by the series, and, unless
+// FAST, exactly when the tilt is too large for it; big: it was (FAST: the result is then not
+// the law's).
+template <bool FAST>
+TBAGS_INLINE vec::V3 rotate_history(const vec::V3 &h, const vec::V3 &n, double k, double crit,
+                                    bool &big)
+{
+  using namespace vec;
+  const bool rot = std::fabs(dot(h, n)) * k > FRAME_EPS * crit;
+  bool small;
+  V3 hp = onto_plane_series(h, n, small);
+  if (!FAST) hp = select(small, hp, onto_plane_exact(h, n));
+  big = rot & !small;
+  return select(rot, hp, h);
+}
+
 // Tangential part of contact_lane, from contact_lane_n()'s results: o.f, o.ti, o.tj (without
 // rolling), o.fs; o.fr zero.
 // FAST (the pair's SIMD loop): the history rotated only by the series; returns true when the
@@ -180,14 +197,7 @@ TBAGS_INLINE bool contact_lane_t(const Params &p, const vec::V3 &n, const vec::V
   const double kts = p.kt * a;
   const double fscrit = p.mu * fncrit;
   bool big = false;    // the rotation needs onto_plane_exact()
-  if (UPDATE) {
-    const bool rot = std::fabs(dot(ht, n)) * kts > FRAME_EPS * fscrit;
-    bool small;
-    V3 hp = onto_plane_series(ht, n, small);
-    if (!FAST) hp = select(small, hp, onto_plane_exact(ht, n));
-    big = rot & !small;
-    ht = select(rot, hp, ht) + dt * vtr;
-  }
+  if (UPDATE) ht = rotate_history<FAST>(ht, n, kts, fscrit, big) + dt * vtr;
   V3 fs = (-damp_t) * vtr - kts * ht;
   const double fs2 = dot(fs, fs);
   // sliding: |fs| > mu |F_n| (squares: no sqrt when sticking)
@@ -243,14 +253,7 @@ TBAGS_INLINE bool contact_lane_roll(const Params &p, const vec::V3 &n, double a,
     const double ks = p.krs * a;
     V3 h = hr;
     bool big = false;
-    if (UPDATE) {
-      const bool rot = std::fabs(dot(h, n)) * ks > FRAME_EPS * frcrit;
-      bool small;
-      V3 hp = onto_plane_series(h, n, small);
-      if (!FAST) hp = select(small, hp, onto_plane_exact(h, n));
-      big = rot & !small;
-      h = select(rot, hp, h) + dt * vrl;
-    }
+    if (UPDATE) h = rotate_history<FAST>(h, n, ks, frcrit, big) + dt * vrl;
     fr = (-ks) * h;
     const double fr2 = dot(fr, fr);
     const bool cap = fr2 > frcrit * frcrit;
