@@ -351,17 +351,31 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     b.delta[l] = o.delta;
     b.reff[l] = reff;
   }
+  if (UPDATE) {    // the tangential history, then the force: fewer live values in each loop
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
 #pragma omp simd reduction(| : redo)
+#endif
+    for (int l = 0; l < n; l++) {
+      V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
+      redo |= law::tangential_history<FAST>(UNI ? *pu : *b.p[l],
+                                            V3{b.n[0][l], b.n[1][l], b.n[2][l]},
+                                            V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, b.a[l],
+                                            b.fn[l], dt, ht);
+      b.h[0][l] = ht.x;
+      b.h[1][l] = ht.y;
+      b.h[2][l] = ht.z;
+    }
+  }
+#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
+#pragma omp simd
 #endif
   for (int l = 0; l < n; l++) {
     V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
     law::LaneOut o;
     const double fn = b.fn[l];
-    redo |= law::contact_lane_t<UPDATE, FAST>(
-        UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
-        V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, b.a[l], b.sqma[l], fn, b.delta[l], b.radi[l],
-        b.radj[l], false, dt, ht, o);
+    law::tangential_force(UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
+                          V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, b.a[l], b.sqma[l], fn,
+                          b.delta[l], b.radi[l], b.radj[l], false, ht, o);
     b.h[0][l] = ht.x;
     b.h[1][l] = ht.y;
     b.h[2][l] = ht.z;
@@ -386,18 +400,33 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     }
   }
   if (ROLL == law::ROLLING_NONE) return redo != 0;
+  if (ROLL == law::ROLLING_EPSD && UPDATE) {    // the rolling history, then the force
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
 #pragma omp simd reduction(| : redo)
+#endif
+    for (int l = 0; l < n; l++) {
+      V3 hr{b.h[3][l], b.h[4][l], b.h[5][l]};
+      redo |= law::rolling_history<UNI, FAST>(
+          UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]}, b.a[l], std::fabs(b.fn[l]),
+          b.reff[l], V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+          V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, dt, hr);
+      b.h[3][l] = hr.x;
+      b.h[4][l] = hr.y;
+      b.h[5][l] = hr.z;
+    }
+  }
+#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
+#pragma omp simd
 #endif
   for (int l = 0; l < n; l++) {
     V3 hr{0.0, 0.0, 0.0};
     if (ROLL == law::ROLLING_EPSD) hr = V3{b.h[3][l], b.h[4][l], b.h[5][l]};
     V3 fr, troll;
     bool on;
-    redo |= law::contact_lane_roll<ROLL, UPDATE, UNI, FAST>(
-        UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]}, b.a[l], std::fabs(b.fn[l]),
-        b.reff[l], V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
-        V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, dt, hr, fr, troll, on);
+    law::rolling_force<ROLL, UNI>(UNI ? *pu : *b.p[l], V3{b.n[0][l], b.n[1][l], b.n[2][l]},
+                                  b.a[l], std::fabs(b.fn[l]), b.reff[l],
+                                  V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+                                  V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, hr, fr, troll, on);
     if (ROLL == law::ROLLING_EPSD) {
       b.h[3][l] = hr.x;
       b.h[4][l] = hr.y;

@@ -179,25 +179,30 @@ TBAGS_INLINE vec::V3 rotate_history(const vec::V3 &h, const vec::V3 &n, double k
   return select(rot, hp, h);
 }
 
-// Tangential part of contact_lane, from contact_lane_n()'s results: o.f, o.ti, o.tj (without
-// rolling), o.fs; o.fr zero.
-// FAST (the pair's SIMD loop): the history rotated only by the series; returns true when the
-// tilt is too large for it (rare): the caller must then redo the contact without FAST, from
-// the old history. When it returns false, ht and o are bit for bit the full law's.
-template <bool UPDATE, bool FAST = false>
-TBAGS_INLINE bool contact_lane_t(const Params &p, const vec::V3 &n, const vec::V3 &vtr, double a,
-                                 double sqma, double fn, double delta, double radi, double radj,
-                                 bool wall, double dt, vec::V3 &ht, LaneOut &o)
+// Tangential spring history of contact_lane (UPDATE): rotated onto the tangent plane and
+// integrated. FAST (the pair's SIMD loop): the rotation only by the series; returns true when
+// the tilt is too large for it (rare): the caller must then redo the contact without FAST,
+// from the old history. When it returns false, ht is bit for bit the full law's.
+template <bool FAST = false>
+TBAGS_INLINE bool tangential_history(const Params &p, const vec::V3 &n, const vec::V3 &vtr,
+                                     double a, double fn, double dt, vec::V3 &ht)
+{
+  bool big = false;    // the rotation needs onto_plane_exact()
+  ht = rotate_history<FAST>(ht, n, p.kt * a, p.mu * std::fabs(fn), big) + dt * vtr;
+  return FAST && big;
+}
+
+// Tangential force of contact_lane from the (integrated) history: incremental Mindlin spring +
+// damping, Coulomb cap (the history reset on sliding); o.f, o.ti, o.tj (without rolling), o.fs;
+// o.fr zero.
+TBAGS_INLINE void tangential_force(const Params &p, const vec::V3 &n, const vec::V3 &vtr,
+                                   double a, double sqma, double fn, double delta, double radi,
+                                   double radj, bool wall, vec::V3 &ht, LaneOut &o)
 {
   using namespace vec;
-  const double fncrit = std::fabs(fn);
-
-  // tangential: incremental Mindlin spring + damping, Coulomb cap
   const double damp_t = p.ct * sqma;
   const double kts = p.kt * a;
-  const double fscrit = p.mu * fncrit;
-  bool big = false;    // the rotation needs onto_plane_exact()
-  if (UPDATE) ht = rotate_history<FAST>(ht, n, kts, fscrit, big) + dt * vtr;
+  const double fscrit = p.mu * std::fabs(fn);
   V3 fs = (-damp_t) * vtr - kts * ht;
   const double fs2 = dot(fs, fs);
   // sliding: |fs| > mu |F_n| (squares: no sqrt when sticking)
@@ -216,7 +221,18 @@ TBAGS_INLINE bool contact_lane_t(const Params &p, const vec::V3 &n, const vec::V
   o.tj = (-armj) * tor;
   o.fr = V3{0.0, 0.0, 0.0};
   o.fs = fs;
-  return FAST && big;
+}
+
+// Tangential part of contact_lane, from contact_lane_n()'s results: the history (UPDATE) and
+// the force; FAST as tangential_history().
+template <bool UPDATE, bool FAST = false>
+TBAGS_INLINE bool contact_lane_t(const Params &p, const vec::V3 &n, const vec::V3 &vtr, double a,
+                                 double sqma, double fn, double delta, double radi, double radj,
+                                 bool wall, double dt, vec::V3 &ht, LaneOut &o)
+{
+  const bool redo = UPDATE && tangential_history<FAST>(p, n, vtr, a, fn, dt, ht);
+  tangential_force(p, n, vtr, a, sqma, fn, delta, radi, radj, wall, ht, o);
+  return redo;
 }
 
 // Normal and tangential part of contact_lane: o without rolling (o.fr zero), and what the
@@ -233,42 +249,67 @@ TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx,
   contact_lane_t<UPDATE>(p, n, vtr, a, sqma, o.fn, o.delta, radi, radj, wall, dt, ht, o);
 }
 
-// Rolling part of contact_lane (ROLL not ROLLING_NONE), from contact_lane_nt()'s n, a and
-// fncrit = |F_n|: the rolling pseudo-force fr and the torque troll = R* n x fr (i gets +troll,
-// j -troll); on: rolling acts (p.mur > 0), else fr, troll and hr are to be left as they were.
-// FAST: as contact_lane_t() (EPSD: returns whether the exact rotation was needed where rolling
-// acts; the cap is in the fast path: in long runs many contacts roll at it); CDT has no
-// rotation.
-template <int ROLL, bool UPDATE, bool ALLON = false, bool FAST = false>
-TBAGS_INLINE bool contact_lane_roll(const Params &p, const vec::V3 &n, double a, double fncrit,
-                                    double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
-                                    vec::V3 &hr, vec::V3 &fr, vec::V3 &troll, bool &on)
+// EPSD rolling history of contact_lane (UPDATE): rotated onto the tangent plane and integrated
+// with the rolling velocity R* (w_i - w_j) x n where rolling acts (p.mur > 0; ALLON: known), else
+// left as it was. FAST: as tangential_history() (returns whether the exact rotation was needed
+// where rolling acts).
+template <bool ALLON = false, bool FAST = false>
+TBAGS_INLINE bool rolling_history(const Params &p, const vec::V3 &n, double a, double fncrit,
+                                  double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
+                                  vec::V3 &hr)
+{
+  using namespace vec;
+  const bool on = ALLON || p.mur > 0.0;
+  const V3 vrl = reff * cross(wi - wj, n);
+  bool big = false;
+  const V3 h = rotate_history<FAST>(hr, n, p.krs * a, p.mur * fncrit, big) + dt * vrl;
+  hr = select(on, h, hr);
+  return FAST && (on & big);
+}
+
+// Rolling resistance of contact_lane (ROLL not ROLLING_NONE) from n, a, fncrit = |F_n| and, for
+// EPSD, the integrated history hr (rolling_history()): the rolling pseudo-force fr and the
+// torque troll = R* n x fr (i gets +troll, j -troll); EPSD: the cap |fr| <= mu_r |F_n| (hr
+// rescaled to it); CDT: |fr| = mu_r |F_n| against the rolling velocity. on: rolling acts
+// (p.mur > 0), else fr and troll are zero and hr is left as it was.
+template <int ROLL, bool ALLON = false>
+TBAGS_INLINE void rolling_force(const Params &p, const vec::V3 &n, double a, double fncrit,
+                                double reff, const vec::V3 &wi, const vec::V3 &wj, vec::V3 &hr,
+                                vec::V3 &fr, vec::V3 &troll, bool &on)
 {
   using namespace vec;
   on = ALLON || p.mur > 0.0;
-  const V3 vrl = reff * cross(wi - wj, n);
   const double frcrit = p.mur * fncrit;
-  bool redo = false;
   if (ROLL == ROLLING_EPSD) {
     const double ks = p.krs * a;
     V3 h = hr;
-    bool big = false;
-    if (UPDATE) h = rotate_history<FAST>(h, n, ks, frcrit, big) + dt * vrl;
     fr = (-ks) * h;
     const double fr2 = dot(fr, fr);
     const bool cap = fr2 > frcrit * frcrit;
     const double sr = frcrit / std::sqrt(fr2);
     h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
     fr = select(cap, sr * fr, fr);
-    redo = on & big;
     hr = select(on, h, hr);
   } else {    // CDT: constant magnitude against the rolling velocity
+    const V3 vrl = reff * cross(wi - wj, n);
     const double vl = std::sqrt(dot(vrl, vrl));
     fr = select(vl > 0.0, (-frcrit / vl) * vrl, V3{0.0, 0.0, 0.0});
   }
   fr = select(on, fr, V3{0.0, 0.0, 0.0});
   troll = reff * cross(n, fr);
-  return FAST && redo;
+}
+
+// Rolling part of contact_lane: the history (EPSD, UPDATE), then the force; FAST as
+// rolling_history().
+template <int ROLL, bool UPDATE, bool ALLON = false, bool FAST = false>
+TBAGS_INLINE bool contact_lane_roll(const Params &p, const vec::V3 &n, double a, double fncrit,
+                                    double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
+                                    vec::V3 &hr, vec::V3 &fr, vec::V3 &troll, bool &on)
+{
+  const bool redo = ROLL == ROLLING_EPSD && UPDATE &&
+      rolling_history<ALLON, FAST>(p, n, a, fncrit, reff, wi, wj, dt, hr);
+  rolling_force<ROLL, ALLON>(p, n, a, fncrit, reff, wi, wj, hr, fr, troll, on);
+  return redo;
 }
 
 // ALLON: the caller knows p.mur > 0 for this contact (rolling acts; no per-lane test)
