@@ -315,8 +315,8 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
 {
   long long redo = 0;    // 64 bits like the lanes: a 32-bit flag would make the vectoriser take 8 lanes (spills)
   using tbags::vec::V3;
-  // three loops (shorter dependency chains and fewer live values in each): normal, tangential,
-  // rolling; contact_lane() is the three parts in one
+  // five loops (shorter dependency chains and fewer live values in each, so no spills): normal,
+  // tangential history and force, rolling history and force; contact_lane() is them in one
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
 #pragma omp simd
 #endif
