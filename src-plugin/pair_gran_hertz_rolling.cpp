@@ -334,11 +334,11 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
     law::LaneOut o;
     V3 nv, vt;
-    double a, sqma;
-    law::contact_lane_n(UNI ? *pu : *b.p[l], clip, V3{dx0, dx1, dx2}, rsq, radsum, reff, meff,
-                        radi, radj, V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
-                        V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
-                        V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, o, nv, vt, a, sqma);
+    double vnnr, a;
+    law::contact_geometry(UNI ? *pu : *b.p[l], V3{dx0, dx1, dx2}, rsq, radsum, reff, radi, radj,
+                          V3{b.vr[0][l], b.vr[1][l], b.vr[2][l]},
+                          V3{b.wi[0][l], b.wi[1][l], b.wi[2][l]},
+                          V3{b.wj[0][l], b.wj[1][l], b.wj[2][l]}, o, nv, vnnr, vt, a);
     b.n[0][l] = nv.x;
     b.n[1][l] = nv.y;
     b.n[2][l] = nv.z;
@@ -346,21 +346,30 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     b.vt[1][l] = vt.y;
     b.vt[2][l] = vt.z;
     b.a[l] = a;
-    b.sqma[l] = sqma;
-    b.fn[l] = o.fn;
+    b.sqma[l] = meff;    // the next loop makes it sqrt(m* a)
+    b.fn[l] = o.fne;     // and this the total normal force
+    b.vnnr[l] = vnnr;
     b.delta[l] = o.delta;
     b.reff[l] = reff;
   }
-  if (UPDATE) {    // the tangential history, then the force: fewer live values in each loop
+  // the normal damping (its square root here, where the divider has time) and the tangential
+  // history; the tangential force in the next loop: fewer live values in each loop
 #if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
 #pragma omp simd reduction(| : redo)
 #endif
-    for (int l = 0; l < n; l++) {
+  for (int l = 0; l < n; l++) {
+    double sqma;
+    const double a = b.a[l];
+    const double fn = law::normal_force(UNI ? *pu : *b.p[l], clip, b.sqma[l], a, b.fn[l],
+                                        b.vnnr[l], sqma);
+    b.sqma[l] = sqma;
+    b.fn[l] = fn;
+    if (UPDATE) {
       V3 ht{b.h[0][l], b.h[1][l], b.h[2][l]};
       redo |= law::tangential_history<FAST>(UNI ? *pu : *b.p[l],
                                             V3{b.n[0][l], b.n[1][l], b.n[2][l]},
-                                            V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, b.a[l],
-                                            b.fn[l], dt, ht);
+                                            V3{b.vt[0][l], b.vt[1][l], b.vt[2][l]}, a, fn, dt,
+                                            ht);
       b.h[0][l] = ht.x;
       b.h[1][l] = ht.y;
       b.h[2][l] = ht.z;

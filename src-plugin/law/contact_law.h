@@ -131,13 +131,22 @@ struct LaneOut {
   double fn, fne, delta, r;
 };
 
-// Geometry and normal part of contact_lane (below): unit normal n, tangential relative velocity
-// vtr at the contact point, contact radius a, sqrt(m* a) and the normal force (o.fn, o.fne,
-// o.delta, o.r set).
-TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, double rsq,
-                                 double radsum, double reff, double meff, double radi, double radj,
-                                 const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj,
-                                 LaneOut &o, vec::V3 &n, vec::V3 &vtr, double &a, double &sqma)
+// Normal force of contact_lane: the Hertz force fne plus restitution damping against the normal
+// relative velocity vnnr (n . (v_i - v_j)), clipped at zero with clip; sqma = sqrt(m* a).
+TBAGS_INLINE double normal_force(const Params &p, bool clip, double meff, double a, double fne,
+                                 double vnnr, double &sqma)
+{
+  sqma = std::sqrt(meff * a);
+  const double fn = fne - p.cn * sqma * vnnr;
+  return (clip & (fn < 0.0)) ? 0.0 : fn;
+}
+
+// Geometry of contact_lane: unit normal n, normal and tangential relative velocity vnnr and vtr
+// at the contact point, contact radius a and the Hertz force (o.fne, o.delta, o.r set).
+TBAGS_INLINE void contact_geometry(const Params &p, const vec::V3 &dx, double rsq, double radsum,
+                                   double reff, double radi, double radj, const vec::V3 &vr,
+                                   const vec::V3 &wi, const vec::V3 &wj, LaneOut &o, vec::V3 &n,
+                                   double &vnnr, vec::V3 &vtr, double &a)
 {
   using namespace vec;
   const double r = std::sqrt(rsq);
@@ -146,20 +155,28 @@ TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, 
   n = rinv * dx;
 
   // relative velocity at the contact point
-  const double vnnr = dot(vr, n);
+  vnnr = dot(vr, n);
   const V3 wr = radi * wi + radj * wj;
   vtr = (vr - vnnr * n) - cross(wr, n);
 
-  // normal: Hertz + restitution damping
+  // normal: Hertz
   a = std::sqrt(reff * delta);
-  const double fne = p.kn * a * delta;
-  sqma = std::sqrt(meff * a);
-  double fn = fne - p.cn * sqma * vnnr;
-  fn = (clip & (fn < 0.0)) ? 0.0 : fn;
-  o.fn = fn;
-  o.fne = fne;
+  o.fne = p.kn * a * delta;
   o.delta = delta;
   o.r = r;
+}
+
+// Geometry and normal part of contact_lane (below): unit normal n, tangential relative velocity
+// vtr at the contact point, contact radius a, sqrt(m* a) and the normal force (o.fn, o.fne,
+// o.delta, o.r set).
+TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, double rsq,
+                                 double radsum, double reff, double meff, double radi, double radj,
+                                 const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj,
+                                 LaneOut &o, vec::V3 &n, vec::V3 &vtr, double &a, double &sqma)
+{
+  double vnnr;
+  contact_geometry(p, dx, rsq, radsum, reff, radi, radj, vr, wi, wj, o, n, vnnr, vtr, a);
+  o.fn = normal_force(p, clip, meff, a, o.fne, vnnr, sqma);
 }
 
 // A spring history h (stiffness k, force cap crit) rotated onto the tangent plane of the unit
