@@ -308,12 +308,14 @@ typedef double v4d __attribute__((vector_size(32), may_alias));    // AtomX, ali
 
 // UNI: one set of constants for all lanes, pu, with rolling on (mu_r > 0) or off for all; else
 // constants b.p per lane. FAC: special-bond factors b.factor per lane (never with UNI).
-// FAST: the law's fast path (contact_lane_t); returns whether a lane needs the full law, which
-// is then to be run over the batch again, from the old history (hist_rows()).
+// FAST: the law's fast path (tangential_history, rolling_history); returns whether a lane needs
+// the full law, which is then to be run over the batch again, from the old history
+// (hist_rows()).
 template <int ROLL, bool UPDATE, bool UNI, bool FAC, bool FAST>
 TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Params *pu)
 {
-  long long redo = 0;    // 64 bits like the lanes: a 32-bit flag would make the vectoriser take 8 lanes (spills)
+  // 64 bits like the lanes: a 32-bit flag makes the vectoriser take 8 lanes (and spill)
+  long long redo = 0;
   using tbags::vec::V3;
   // five loops (shorter dependency chains and fewer live values in each, so no spills): normal,
   // tangential history and force, rolling history and force; contact_lane() is them in one
@@ -346,8 +348,8 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
     b.vt[1][l] = vt.y;
     b.vt[2][l] = vt.z;
     b.a[l] = a;
-    b.sqma[l] = meff;    // the next loop makes it sqrt(m* a)
-    b.fn[l] = o.fne;     // and this the total normal force
+    b.meff[l] = meff;
+    b.fne[l] = o.fne;
     b.vnnr[l] = vnnr;
     b.delta[l] = o.delta;
     b.reff[l] = reff;
@@ -360,7 +362,7 @@ TBAGS_INLINE bool law_lanes(Batch &b, int n, double dt, bool clip, const law::Pa
   for (int l = 0; l < n; l++) {
     double sqma;
     const double a = b.a[l];
-    const double fn = law::normal_force(UNI ? *pu : *b.p[l], clip, b.sqma[l], a, b.fn[l],
+    const double fn = law::normal_force(UNI ? *pu : *b.p[l], clip, b.meff[l], a, b.fne[l],
                                         b.vnnr[l], sqma);
     b.sqma[l] = sqma;
     b.fn[l] = fn;

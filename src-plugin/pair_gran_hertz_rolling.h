@@ -65,7 +65,8 @@ class PairGranHertzRolling : public Pair {
     double vr[3][N], wi[3][N], wj[3][N], h[6][N];
     double f[3][N], ti[3][N], tj[3][N];
     // from the law's normal loop to its tangential and rolling loops
-    double n[3][N], vt[3][N], a[N], sqma[N], fn[N], delta[N], reff[N], vnnr[N];
+    double n[3][N], vt[3][N], a[N], sqma[N], fn[N], delta[N], reff[N];
+    double meff[N], fne[N], vnnr[N];    // from the normal loop to the damping
   };
 
  protected:
