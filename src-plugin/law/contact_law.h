@@ -180,18 +180,17 @@ TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, 
 }
 
 // A spring history h (stiffness k, force cap crit) rotated onto the tangent plane of the unit
-// normal n when it has a normal part (relative to the cap, as stock): by the series, and, unless
-// FAST, exactly when the tilt is too large for it; big: it was (FAST: the result is then not
-// the law's).
+// normal n when it has a normal part (relative to the cap, as stock): onto_plane(), or with
+// FAST only its series; big (FAST): the tilt was too large for the series, the result is then
+// not the law's.
 template <bool FAST>
 TBAGS_INLINE vec::V3 rotate_history(const vec::V3 &h, const vec::V3 &n, double k, double crit,
                                     bool &big)
 {
   using namespace vec;
   const bool rot = std::fabs(dot(h, n)) * k > FRAME_EPS * crit;
-  bool small;
-  V3 hp = onto_plane_series(h, n, small);
-  if (!FAST) hp = select(small, hp, onto_plane_exact(h, n));
+  bool small = true;
+  const V3 hp = FAST ? onto_plane_series(h, n, small) : onto_plane(h, n);
   big = rot & !small;
   return select(rot, hp, h);
 }
