@@ -38,7 +38,8 @@ PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3), ntypes1(0),
     freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
     maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr),
-    packx(nullptr), packv(nullptr), npack(0)
+    packx(nullptr), packv(nullptr), npack(0), x0(nullptr), nx0(0), cand_nall(0),
+    cand_lastcall(-1), cskin(0.0), cand_lim2(0.0)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
   // TBAGS_NO_AVX2 in the environment: the baseline build (tests check both give the same bits)
@@ -66,6 +67,7 @@ PairGranHertzRolling::~PairGranHertzRolling()
   delete[] svector;
   free(packx);
   free(packv);
+  free(x0);
   if (!fix_history && modify->get_fix_by_id("NEIGH_HISTORY_GHR_DUMMY"))
     modify->delete_fix("NEIGH_HISTORY_GHR_DUMMY");
   else if (fix_history && modify->get_fix_by_id("NEIGH_HISTORY_GHR"))
@@ -265,6 +267,20 @@ void PairGranHertzRolling::init_style()
   for (int i = 0; i < atom->nlocal; i++)
     onerad[atom->type[i]] = MAX(onerad[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(&onerad[1], &maxrad[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
+
+  // candidate list (see the header): its skin a fraction of the neighbor skin, 1/4 unless
+  // TBAGS_CONTACT_SKIN gives another (0: none, the whole list every step; the results are the
+  // same bits); an atom moving 0.49 cskin forces a rebuild (pairs left out stay 0.02 cskin apart)
+  double frac = 0.25;
+  if (const char *f = getenv("TBAGS_CONTACT_SKIN")) {
+    frac = utils::numeric(FLERR, f, false, lmp);
+    if (frac < 0.0)
+      error->all(FLERR, "{}: TBAGS_CONTACT_SKIN={} must be a fraction >= 0 of the neighbor skin",
+                 STYLE, f);
+  }
+  cskin = frac * neighbor->skin;
+  cand_lim2 = (0.49 * cskin) * (0.49 * cskin);
+  cand_nall = 0;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -712,10 +728,12 @@ const law::Params *PairGranHertzRolling::uniform_params() const
 }
 
 /* ----------------------------------------------------------------------
-   the kernel's per-atom data of local and ghost atoms, packed into two aligned records
+   the kernel's per-atom data of local and ghost atoms, packed into two aligned records;
+   returns whether the candidate list is still valid: no atom moved more than 0.49 cskin
+   and no radius changed since its build (same atoms)
 ------------------------------------------------------------------------- */
 
-TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
+TBAGS_INLINE bool PairGranHertzRolling::pack_atoms()
 {
   const int nall = atom->nlocal + atom->nghost;
   if (nall > npack) {
@@ -749,11 +767,22 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
   // the mass, negative for atoms in the fix freeze group
   auto ms = [&](int i) { return (mask[i] & frzbit) ? -rmass[i] : rmass[i]; };
   static_assert(sizeof(AtomV) == 64 && offsetof(AtomV, type) == 56, "AtomV layout");
+  // the candidate list's check (chk): the largest squared displacement since its build, and
+  // whether a radius changed
+  const bool chk = cand_nall == nall;
+  const AtomX *__restrict ox = x0;
+  double mx = 0.0, mr = 0.0;
   // frz: a fix freeze group exists (else no mask read)
-  auto rec = [&](int i, bool frz) __attribute__((always_inline)) {
+  auto rec = [&](int i, bool frz, bool ck) __attribute__((always_inline)) {
     v4du a = *reinterpret_cast<const v4du *>(x + 3 * i);
     a[3] = radius[i];
     *reinterpret_cast<v4da *>(&px[i]) = a;
+    if (ck) {
+      const v4d d = a - *reinterpret_cast<const v4da *>(&ox[i]), dd = d * d;
+      const double m = dd[0] + dd[1] + dd[2];
+      mx = mx > m ? mx : m;
+      mr = mr > dd[3] ? mr : dd[3];
+    }
     v4du b = *reinterpret_cast<const v4du *>(v + 3 * i);
     b[3] = frz ? ms(i) : rmass[i];
     reinterpret_cast<v4da *>(&pv[i])[0] = b;
@@ -761,10 +790,13 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
     c[3] = tf(i);
     reinterpret_cast<v4da *>(&pv[i])[1] = c;
   };
-  if (frzbit)
-    for (int i = 0; i < nall - 1; i++) rec(i, true);
-  else
-    for (int i = 0; i < nall - 1; i++) rec(i, false);
+  if (frzbit) {
+    if (chk) for (int i = 0; i < nall - 1; i++) rec(i, true, true);
+    else for (int i = 0; i < nall - 1; i++) rec(i, true, false);
+  } else {
+    if (chk) for (int i = 0; i < nall - 1; i++) rec(i, false, true);
+    else for (int i = 0; i < nall - 1; i++) rec(i, false, false);
+  }
   if (nall > 0) {
     const int i = nall - 1;
     px[i].x[0] = x[3 * i];
@@ -780,12 +812,23 @@ TBAGS_INLINE void PairGranHertzRolling::pack_atoms()
     pv[i].w[2] = omega[3 * i + 2];
     pv[i].type = type[i];
     pv[i].pad = 0;
+    if (chk) {
+      const AtomX &o = ox[i];
+      const double d0 = px[i].x[0] - o.x[0], d1 = px[i].x[1] - o.x[1], d2 = px[i].x[2] - o.x[2];
+      const double m = d0 * d0 + d1 * d1 + d2 * d2;
+      mx = mx > m ? mx : m;
+      if (px[i].r != o.r) mr = 1.0;
+    }
   }
+  // the candidate list still holds every pair that can touch
+  return chk && mx <= cand_lim2 && mr == 0.0;
 }
 
 /* ----------------------------------------------------------------------
-   pass 1: walk the neighbor list, reset the history of separated pairs and gather the
-   touching ones into the batch; when full, run the law over it and scatter the result.
+   pass 1: walk the candidate list (or, when it must be rebuilt, the whole neighbor list,
+   building it), reset the history of separated pairs and gather the touching ones into the
+   batch; when full, run the law over it and scatter the result. Either walk visits every
+   pair that can touch in neighbor-list order: the same contacts, the same bits.
    SB: the list may hold special-bond bits (else every factor is 1 and j needs no mask).
 ------------------------------------------------------------------------- */
 
@@ -813,7 +856,10 @@ template <int ROLL, bool UPDATE, bool SB, bool UNI>
 TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
 {
   if (list->inum == 0) return;
-  pack_atoms();
+  const int nall = atom->nlocal + atom->nghost;
+  // the candidate list holds every pair that can touch (else it is rebuilt in this pass)
+  const bool valid = pack_atoms() && update->setupflag == 0 &&
+      neighbor->lastcall == cand_lastcall && (int) cand_start.size() == list->inum + 1;
   Batch &b = *batch;
   const AtomX *__restrict px = packx;
   const AtomV *__restrict pv = packv;
@@ -821,8 +867,6 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
 
   const int inum = list->inum;
   const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
   int **firsttouch = fix_history->firstflag;
   double **firsthistory = fix_history->firstvalue;
 
@@ -847,73 +891,133 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
   };
 
   int n = 0;
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
+  // atom i's values for its contacts
+  struct I {
+    int i;
+    v4d xi4;    // (x_i, -r_i): (x_i, -r_i) - (x_j, r_j) is dx and -(r_i + r_j)
+    double vi0, vi1, vi2, wi0, wi1, wi2, mi;
+    int *touch;
+    double *allhistory;
+    const law::Params *prow;
+  };
+  auto atom_i = [&](int i) __attribute__((always_inline)) {
     const double radi = px[i].r;
-    // (x_i, -r_i) - (x_j, r_j): dx and -(r_i + r_j) in one vector operation
-    const v4d xi4 = {px[i].x[0], px[i].x[1], px[i].x[2], -radi};
     const AtomV &ai = pv[i];
-    const double vi0 = ai.v[0], vi1 = ai.v[1], vi2 = ai.v[2];
-    const double wi0 = ai.w[0], wi1 = ai.w[1], wi2 = ai.w[2];
-    const double mi = ai.m;
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    int *touch = firsttouch[i];
-    double *allhistory = firsthistory[i];
-    const law::Params *prow = &law[ai.type * ntypes1];
-
-    for (int jj = 0; jj < jnum; jj++) {
-      int j = jlist[jj];
-      double factor_lj = 1.0;
-      if (SB) {
-        factor_lj = special_lj[sbmask(j)];
-        j &= NEIGHMASK;
-        if (factor_lj == 0.0) continue;
+    return I{i, v4d{px[i].x[0], px[i].x[1], px[i].x[2], -radi}, ai.v[0], ai.v[1], ai.v[2],
+             ai.w[0], ai.w[1], ai.w[2], ai.m, firsttouch[i], firsthistory[i],
+             &law[ai.type * ntypes1]};
+  };
+  // neighbour j at index jj of i's list, d = (x_i, -r_i) - (x_j, r_j): forget the history of
+  // a separated pair, gather a touching one into the batch (flushed when full)
+  auto contact = [&](const I &c, int j, double factor_lj, int jj, const v4d d)
+      __attribute__((always_inline)) {
+    const v4d dd = d * d;
+    // r^2 as (dx0^2 + dx1^2) + dx2^2, (r_i + r_j)^2 exactly: the same test as touching()
+    const double rsq = dd[0] + dd[1] + dd[2];
+    double *hist = &c.allhistory[NH * jj];
+    if (!(rsq < dd[3])) {
+      if (c.touch[jj]) {    // was touching: forget (not-touching pairs stay untouched)
+        c.touch[jj] = 0;
+        for (int k = 0; k < NH; k++) hist[k] = 0.0;
       }
+      return;
+    }
+    c.touch[jj] = 1;
+    __builtin_prefetch(hist, 1);    // read at the flush, written back after the law
 
-      __builtin_prefetch(&pv[j]);    // needed if touching: fetched while the test runs
-      const v4d d = xi4 - *reinterpret_cast<const v4d *>(&px[j]);
-      const v4d dd = d * d;
-      // r^2 as (dx0^2 + dx1^2) + dx2^2, (r_i + r_j)^2 exactly: the same test as touching()
-      const double rsq = dd[0] + dd[1] + dd[2];
-      double *hist = &allhistory[NH * jj];
-      if (!(rsq < dd[3])) {
-        if (touch[jj]) {    // was touching: forget (not-touching pairs stay untouched)
-          touch[jj] = 0;
-          for (int k = 0; k < NH; k++) hist[k] = 0.0;
+    const AtomV &bj = pv[j];
+    b.i[n] = c.i;
+    b.j[n] = j;
+    b.hist[n] = hist;
+    if (!UNI) b.p[n] = &c.prow[bj.type];
+    b.dx[0][n] = d[0];
+    b.dx[1][n] = d[1];
+    b.dx[2][n] = d[2];
+    b.radi[n] = -c.xi4[3];
+    b.radj[n] = px[j].r;
+    b.mi[n] = c.mi;
+    b.mj[n] = bj.m;
+    if (SB) b.factor[n] = factor_lj;
+    b.vr[0][n] = c.vi0 - bj.v[0];
+    b.vr[1][n] = c.vi1 - bj.v[1];
+    b.vr[2][n] = c.vi2 - bj.v[2];
+    b.wi[0][n] = c.wi0;
+    b.wi[1][n] = c.wi1;
+    b.wi[2][n] = c.wi2;
+    b.wj[0][n] = bj.w[0];
+    b.wj[1][n] = bj.w[1];
+    b.wj[2][n] = bj.w[2];
+    if (++n == Batch::N) {
+      flush(n);
+      n = 0;
+    }
+  };
+
+  if (valid) {    // the candidates only
+    const Cand *cd = cand.data();
+    const int *cs = cand_start.data();
+    for (int ii = 0; ii < inum; ii++) {
+      const int k0 = cs[ii], k1 = cs[ii + 1];
+      if (k0 == k1) continue;
+      const I c = atom_i(ilist[ii]);
+      for (int k = k0; k < k1; k++) {
+        int j = cd[k].j;
+        {    // the candidate 8 ahead (the list is padded past its end)
+          const int jp = cd[k + 8].j & NEIGHMASK;
+          __builtin_prefetch(&px[jp]);
+          __builtin_prefetch(&pv[jp]);
         }
-        continue;
-      }
-      touch[jj] = 1;
-      __builtin_prefetch(hist, 1);    // read at the flush, written back after the law
-
-      const AtomV &bj = pv[j];
-      b.i[n] = i;
-      b.j[n] = j;
-      b.hist[n] = hist;
-      if (!UNI) b.p[n] = &prow[bj.type];
-      b.dx[0][n] = d[0];
-      b.dx[1][n] = d[1];
-      b.dx[2][n] = d[2];
-      b.radi[n] = radi;
-      b.radj[n] = px[j].r;
-      b.mi[n] = mi;
-      b.mj[n] = bj.m;
-      if (SB) b.factor[n] = factor_lj;
-      b.vr[0][n] = vi0 - bj.v[0];
-      b.vr[1][n] = vi1 - bj.v[1];
-      b.vr[2][n] = vi2 - bj.v[2];
-      b.wi[0][n] = wi0;
-      b.wi[1][n] = wi1;
-      b.wi[2][n] = wi2;
-      b.wj[0][n] = bj.w[0];
-      b.wj[1][n] = bj.w[1];
-      b.wj[2][n] = bj.w[2];
-      if (++n == Batch::N) {
-        flush(n);
-        n = 0;
+        double factor_lj = 1.0;
+        if (SB) {
+          factor_lj = special_lj[sbmask(j)];
+          j &= NEIGHMASK;
+        }
+        __builtin_prefetch(&pv[j]);    // needed if touching: fetched while the test runs
+        contact(c, j, factor_lj, cd[k].jj, c.xi4 - *reinterpret_cast<const v4d *>(&px[j]));
       }
     }
+  } else {    // the whole neighbor list, building the candidate list
+    const int *numneigh = list->numneigh;
+    int **firstneigh = list->firstneigh;
+    cand_start.resize(inum + 1);
+    int nc = 0;
+    for (int ii = 0; ii < inum; ii++) {
+      const int i = ilist[ii];
+      const I c = atom_i(i);
+      const int *jlist = firstneigh[i];
+      const int jnum = numneigh[i];
+      cand_start[ii] = nc;
+      if (cand.size() < (size_t) (nc + jnum)) cand.resize(2 * cand.size() + jnum);
+      Cand *cd = cand.data();
+      for (int jj = 0; jj < jnum; jj++) {
+        const int jraw = jlist[jj];
+        int j = jraw;
+        double factor_lj = 1.0;
+        if (SB) {
+          factor_lj = special_lj[sbmask(j)];
+          j &= NEIGHMASK;
+          if (factor_lj == 0.0) continue;
+        }
+        __builtin_prefetch(&pv[j]);
+        const v4d d = c.xi4 - *reinterpret_cast<const v4d *>(&px[j]);
+        // a candidate: |dx| < r_i + r_j + cskin (else as a separated pair)
+        const double rc = cskin - d[3];
+        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc * rc) cd[nc++] = Cand{jraw, jj};
+        contact(c, j, factor_lj, jj, d);
+      }
+    }
+    cand_start[inum] = nc;
+    if (cand.size() < (size_t) nc + 8) cand.resize(nc + 8);
+    for (int k = nc; k < nc + 8; k++) cand[k] = Cand{0, 0};    // read by the prefetch
+    if (nx0 < nall) {
+      free(x0);
+      nx0 = npack;
+      x0 = static_cast<AtomX *>(aligned_alloc(64, sizeof(AtomX) * (size_t) nx0));
+      if (!x0) error->one(FLERR, "{}: out of memory for {} atoms", STYLE, nx0);
+    }
+    memcpy(x0, px, sizeof(AtomX) * (size_t) nall);
+    cand_nall = cskin > 0.0 ? nall : 0;    // no skin: the whole list every step
+    cand_lastcall = neighbor->lastcall;
   }
   if (n) flush(n);
 }

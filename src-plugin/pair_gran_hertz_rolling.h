@@ -103,7 +103,24 @@ class PairGranHertzRolling : public Pair {
   AtomX *packx;
   AtomV *packv;
   int npack;    // capacity
-  inline void pack_atoms();
+  inline bool pack_atoms();
+
+  // Candidate list: the pairs of the neighbor list closer than r_i + r_j + cskin, as
+  // (raw j, index in i's list), in list order, built by a full pass over the neighbor list;
+  // pairs left out cannot touch while no atom has moved cskin/2 (or changed radius) since,
+  // so each step visits only these. Rebuilt at each neighbor list build, run setup, or when
+  // an atom has moved that far (pack_atoms() compares with the positions x0 at the build).
+  struct Cand {
+    int j, jj;
+  };
+  std::vector<Cand> cand;
+  std::vector<int> cand_start;    // per ilist entry; inum + 1
+  AtomX *x0;                      // positions and radii at the build
+  int nx0;                        // capacity of x0
+  int cand_nall;                  // atoms (local + ghost) at the build, 0: no valid list
+  bigint cand_lastcall;           // neighbor->lastcall at the build
+  double cskin;                   // the candidate skin (distance)
+  double cand_lim2;               // (cskin/2)^2 less a margin: squared displacement that forces a rebuild
 
   void allocate();
   template <bool SB> void eval_rolling(bool update_history);    // eval() for the rolling model

@@ -73,3 +73,36 @@ def test_frozen_atoms_use_the_other_mass(tmp_path, data):
     print("%d contacts, %d between a frozen and a free atom; error %.2e" % (len(c), frozen_contacts, err))
     assert frozen_contacts > 20
     assert err < 1e-12
+
+
+def dump_and_thermo(wd):
+    log = [l for l in (wd / "log.lammps").read_text().splitlines()
+           if len(l.split()) == 5 and l.split()[0].isdigit()]
+    assert len(log) == 5
+    return (wd / "final.dump").read_text(), log
+
+
+@pytest.mark.parametrize("model", ["epsd", "none"])
+def test_candidate_list_gives_the_whole_list_bits(tmp_path, data, monkeypatch, model):
+    """Each step visits only the candidate pairs (closer than r_i + r_j + a fraction of the
+    neighbor skin), rebuilt when an atom has moved half that. With a candidate skin of 0.2 %
+    of the neighbor skin (2 um) the list is rebuilt every 20-40 steps between neighbor list
+    builds, while pairs close by up to 10 um in the run (new contacts form): a missed rebuild
+    would miss contacts. Both equal the whole-list walk (fraction 0) bit for bit."""
+    runs = {}
+    for frac in ("0", "0.002", None):
+        if frac is None:
+            monkeypatch.delenv("TBAGS_CONTACT_SKIN", raising=False)
+        else:
+            monkeypatch.setenv("TBAGS_CONTACT_SKIN", frac)
+        wd = tmp_path / ("default" if frac is None else "f" + frac)
+        run(wd, data, model)
+        runs[frac] = dump_and_thermo(wd)
+    assert runs["0.002"] == runs["0"]
+    assert runs[None] == runs["0"]
+
+
+def test_candidate_skin_must_not_be_negative(tmp_path, data, monkeypatch):
+    monkeypatch.setenv("TBAGS_CONTACT_SKIN", "-0.1")
+    r = lmprun.run(DECK, tmp_path, variables={"data": data, "model": "epsd", "newton": "on"})
+    assert "TBAGS_CONTACT_SKIN=-0.1 must be a fraction >= 0" in r.output
