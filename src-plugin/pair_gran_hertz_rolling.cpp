@@ -38,7 +38,7 @@ PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3), ntypes1(0),
     freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
     maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr),
-    packx(nullptr), packv(nullptr), npack(0), x0(nullptr), nx0(0), cand_nall(0),
+    packx(nullptr), packv(nullptr), npack(0), ncand(0), x0(nullptr), nx0(0), cand_nall(0),
     cand_lastcall(-1), cskin(0.0), cand_lim2(0.0)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
@@ -859,7 +859,7 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
   const int nall = atom->nlocal + atom->nghost;
   // the candidate list holds every pair that can touch (else it is rebuilt in this pass)
   const bool valid = pack_atoms() && update->setupflag == 0 &&
-      neighbor->lastcall == cand_lastcall && (int) cand_start.size() == list->inum + 1;
+      neighbor->lastcall == cand_lastcall;
   Batch &b = *batch;
   const AtomX *__restrict px = packx;
   const AtomV *__restrict pv = packv;
@@ -896,33 +896,29 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
     int i;
     v4d xi4;    // (x_i, -r_i): (x_i, -r_i) - (x_j, r_j) is dx and -(r_i + r_j)
     double vi0, vi1, vi2, wi0, wi1, wi2, mi;
-    int *touch;
-    double *allhistory;
     const law::Params *prow;
   };
+  const v4d flip = {1.0, 1.0, 1.0, -1.0};
   auto atom_i = [&](int i) __attribute__((always_inline)) {
-    const double radi = px[i].r;
     const AtomV &ai = pv[i];
-    return I{i, v4d{px[i].x[0], px[i].x[1], px[i].x[2], -radi}, ai.v[0], ai.v[1], ai.v[2],
-             ai.w[0], ai.w[1], ai.w[2], ai.m, firsttouch[i], firsthistory[i],
-             &law[ai.type * ntypes1]};
+    return I{i, *reinterpret_cast<const v4d *>(&px[i]) * flip, ai.v[0], ai.v[1], ai.v[2],
+             ai.w[0], ai.w[1], ai.w[2], ai.m, &law[ai.type * ntypes1]};
   };
-  // neighbour j at index jj of i's list, d = (x_i, -r_i) - (x_j, r_j): forget the history of
-  // a separated pair, gather a touching one into the batch (flushed when full)
-  auto contact = [&](const I &c, int j, double factor_lj, int jj, const v4d d)
+  // neighbour j of i, d = (x_i, -r_i) - (x_j, r_j), its touch flag and history: forget the
+  // history of a separated pair, gather a touching one into the batch (flushed when full)
+  auto contact = [&](const I &c, int j, double factor_lj, int *touch, double *hist, const v4d d)
       __attribute__((always_inline)) {
     const v4d dd = d * d;
     // r^2 as (dx0^2 + dx1^2) + dx2^2, (r_i + r_j)^2 exactly: the same test as touching()
     const double rsq = dd[0] + dd[1] + dd[2];
-    double *hist = &c.allhistory[NH * jj];
     if (!(rsq < dd[3])) {
-      if (c.touch[jj]) {    // was touching: forget (not-touching pairs stay untouched)
-        c.touch[jj] = 0;
+      if (*touch) {    // was touching: forget (not-touching pairs stay untouched)
+        *touch = 0;
         for (int k = 0; k < NH; k++) hist[k] = 0.0;
       }
       return;
     }
-    c.touch[jj] = 1;
+    *touch = 1;
     __builtin_prefetch(hist, 1);    // read at the flush, written back after the law
 
     const AtomV &bj = pv[j];
@@ -953,40 +949,36 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
     }
   };
 
-  if (valid) {    // the candidates only
+  if (valid) {    // the candidates only, as one flat list (no branch per atom i)
     const Cand *cd = cand.data();
-    const int *cs = cand_start.data();
-    for (int ii = 0; ii < inum; ii++) {
-      const int k0 = cs[ii], k1 = cs[ii + 1];
-      if (k0 == k1) continue;
-      const I c = atom_i(ilist[ii]);
-      for (int k = k0; k < k1; k++) {
-        int j = cd[k].j;
-        {    // the candidate 8 ahead (the list is padded past its end)
-          const int jp = cd[k + 8].j & NEIGHMASK;
-          __builtin_prefetch(&px[jp]);
-          __builtin_prefetch(&pv[jp]);
-        }
-        double factor_lj = 1.0;
-        if (SB) {
-          factor_lj = special_lj[sbmask(j)];
-          j &= NEIGHMASK;
-        }
-        __builtin_prefetch(&pv[j]);    // needed if touching: fetched while the test runs
-        contact(c, j, factor_lj, cd[k].jj, c.xi4 - *reinterpret_cast<const v4d *>(&px[j]));
+    for (int k = 0; k < ncand; k++) {
+      const Cand &ck = cd[k];
+      {    // the candidate 8 ahead (the list is padded past its end)
+        const int jp = cd[k + 8].j & NEIGHMASK;
+        __builtin_prefetch(&px[jp]);
+        __builtin_prefetch(&pv[jp]);
       }
+      int j = ck.j;
+      double factor_lj = 1.0;
+      if (SB) {
+        factor_lj = special_lj[sbmask(j)];
+        j &= NEIGHMASK;
+      }
+      const I c = atom_i(ck.i);
+      contact(c, j, factor_lj, ck.touch, ck.hist,
+              c.xi4 - *reinterpret_cast<const v4d *>(&px[j]));
     }
   } else {    // the whole neighbor list, building the candidate list
     const int *numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
-    cand_start.resize(inum + 1);
     int nc = 0;
     for (int ii = 0; ii < inum; ii++) {
       const int i = ilist[ii];
       const I c = atom_i(i);
       const int *jlist = firstneigh[i];
       const int jnum = numneigh[i];
-      cand_start[ii] = nc;
+      int *touch = firsttouch[i];
+      double *allhistory = firsthistory[i];
       if (cand.size() < (size_t) (nc + jnum)) cand.resize(2 * cand.size() + jnum);
       Cand *cd = cand.data();
       for (int jj = 0; jj < jnum; jj++) {
@@ -1002,13 +994,14 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
         const v4d d = c.xi4 - *reinterpret_cast<const v4d *>(&px[j]);
         // a candidate: |dx| < r_i + r_j + cskin (else as a separated pair)
         const double rc = cskin - d[3];
-        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc * rc) cd[nc++] = Cand{jraw, jj};
-        contact(c, j, factor_lj, jj, d);
+        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc * rc)
+          cd[nc++] = Cand{i, jraw, &allhistory[NH * jj], &touch[jj]};
+        contact(c, j, factor_lj, &touch[jj], &allhistory[NH * jj], d);
       }
     }
-    cand_start[inum] = nc;
+    ncand = nc;
     if (cand.size() < (size_t) nc + 8) cand.resize(nc + 8);
-    for (int k = nc; k < nc + 8; k++) cand[k] = Cand{0, 0};    // read by the prefetch
+    for (int k = nc; k < nc + 8; k++) cand[k] = Cand{0, 0, nullptr, nullptr};    // prefetched
     if (nx0 < nall) {
       free(x0);
       nx0 = npack;

@@ -106,15 +106,17 @@ class PairGranHertzRolling : public Pair {
   inline bool pack_atoms();
 
   // Candidate list: the pairs of the neighbor list closer than r_i + r_j + cskin, as
-  // (raw j, index in i's list), in list order, built by a full pass over the neighbor list;
+  // (i, raw j, its history and touch flag), in list order, built by a full pass over the list;
   // pairs left out cannot touch while no atom has moved cskin/2 (or changed radius) since,
   // so each step visits only these. Rebuilt at each neighbor list build, run setup, or when
   // an atom has moved that far (pack_atoms() compares with the positions x0 at the build).
   struct Cand {
-    int j, jj;
+    int i, j;
+    double *hist;
+    int *touch;
   };
-  std::vector<Cand> cand;
-  std::vector<int> cand_start;    // per ilist entry; inum + 1
+  std::vector<Cand> cand;         // ncand, then 8 for the prefetch
+  int ncand;
   AtomX *x0;                      // positions and radii at the build
   int nx0;                        // capacity of x0
   int cand_nall;                  // atoms (local + ghost) at the build, 0: no valid list
