@@ -904,23 +904,19 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
     return I{i, *reinterpret_cast<const v4d *>(&px[i]) * flip, ai.v[0], ai.v[1], ai.v[2],
              ai.w[0], ai.w[1], ai.w[2], ai.m, &law[ai.type * ntypes1]};
   };
-  // neighbour j of i, d = (x_i, -r_i) - (x_j, r_j), its touch flag and history: forget the
-  // history of a separated pair, gather a touching one into the batch (flushed when full)
-  auto contact = [&](const I &c, int j, double factor_lj, int *touch, double *hist, const v4d d)
-      __attribute__((always_inline)) {
+  // r^2 as (dx0^2 + dx1^2) + dx2^2 < (r_i + r_j)^2 exactly, from d = (x_i, -r_i) - (x_j, r_j):
+  // the same test as touching()
+  auto touching = [](const v4d d) __attribute__((always_inline)) {
     const v4d dd = d * d;
-    // r^2 as (dx0^2 + dx1^2) + dx2^2, (r_i + r_j)^2 exactly: the same test as touching()
-    const double rsq = dd[0] + dd[1] + dd[2];
-    if (!(rsq < dd[3])) {
-      if (*touch) {    // was touching: forget (not-touching pairs stay untouched)
-        *touch = 0;
-        for (int k = 0; k < NH; k++) hist[k] = 0.0;
-      }
-      return;
-    }
-    *touch = 1;
+    return dd[0] + dd[1] + dd[2] < dd[3];
+  };
+  auto forget = [](double *hist) __attribute__((always_inline)) {
+    for (int k = 0; k < NH; k++) hist[k] = 0.0;
+  };
+  // a touching neighbour j of i into the batch (flushed when full)
+  auto gather = [&](const I &c, int j, double factor_lj, double *hist, const v4d d)
+      __attribute__((always_inline)) {
     __builtin_prefetch(hist, 1);    // read at the flush, written back after the law
-
     const AtomV &bj = pv[j];
     b.i[n] = c.i;
     b.j[n] = j;
@@ -950,23 +946,33 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
   };
 
   if (valid) {    // the candidates only, as one flat list (no branch per atom i)
-    const Cand *cd = cand.data();
+    Cand *cd = cand.data();
     for (int k = 0; k < ncand; k++) {
-      const Cand &ck = cd[k];
+      Cand &ck = cd[k];
       {    // the candidate 8 ahead (the list is padded past its end)
         const int jp = cd[k + 8].j & NEIGHMASK;
         __builtin_prefetch(&px[jp]);
         __builtin_prefetch(&pv[jp]);
       }
-      int j = ck.j;
-      double factor_lj = 1.0;
-      if (SB) {
-        factor_lj = special_lj[sbmask(j)];
-        j &= NEIGHMASK;
-      }
+      const int jc = ck.j;
+      const int j = jc & NEIGHMASK;
+      const double factor_lj = SB ? special_lj[sbmask(jc)] : 1.0;
       const I c = atom_i(ck.i);
-      contact(c, j, factor_lj, ck.touch, ck.hist,
-              c.xi4 - *reinterpret_cast<const v4d *>(&px[j]));
+      const v4d d = c.xi4 - *reinterpret_cast<const v4d *>(&px[j]);
+      // the touch flag kept in the candidate (CAND_TOUCH), the list's set when it changes
+      if (!touching(d)) {
+        if (jc & CAND_TOUCH) {    // was touching: forget
+          ck.j = jc & ~CAND_TOUCH;
+          *ck.touch = 0;
+          forget(ck.hist);
+        }
+        continue;
+      }
+      if (!(jc & CAND_TOUCH)) {
+        ck.j = jc | CAND_TOUCH;
+        *ck.touch = 1;
+      }
+      gather(c, j, factor_lj, ck.hist, d);
     }
   } else {    // the whole neighbor list, building the candidate list
     const int *numneigh = list->numneigh;
@@ -994,9 +1000,19 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
         const v4d d = c.xi4 - *reinterpret_cast<const v4d *>(&px[j]);
         // a candidate: |dx| < r_i + r_j + cskin (else as a separated pair)
         const double rc = cskin - d[3];
-        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc * rc)
-          cd[nc++] = Cand{i, jraw, &allhistory[NH * jj], &touch[jj]};
-        contact(c, j, factor_lj, &touch[jj], &allhistory[NH * jj], d);
+        const bool cnd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc * rc;
+        double *hist = &allhistory[NH * jj];
+        const bool t = touching(d);
+        if (cnd) cd[nc++] = Cand{i, t ? jraw | CAND_TOUCH : jraw, hist, &touch[jj]};
+        if (!t) {
+          if (touch[jj]) {    // was touching: forget (not-touching pairs stay untouched)
+            touch[jj] = 0;
+            forget(hist);
+          }
+          continue;
+        }
+        touch[jj] = 1;
+        gather(c, j, factor_lj, hist, d);
       }
     }
     ncand = nc;

@@ -110,8 +110,9 @@ class PairGranHertzRolling : public Pair {
   // pairs left out cannot touch while no atom has moved cskin/2 (or changed radius) since,
   // so each step visits only these. Rebuilt at each neighbor list build, run setup, or when
   // an atom has moved that far (pack_atoms() compares with the positions x0 at the build).
+  static constexpr int CAND_TOUCH = 1 << HISTBITS;    // in Cand::j: touching (else 0)
   struct Cand {
-    int i, j;
+    int i, j;    // j as in the list (no history bit there), CAND_TOUCH added
     double *hist;
     int *touch;
   };
