@@ -57,7 +57,7 @@ class PairGranHertzRolling : public Pair {
   // one column per contact), so the law runs over them in SIMD lanes, then scattered back in
   // neighbor-list order (forces sum in the same order as a plain loop).
   struct alignas(64) Batch {
-    static constexpr int N = 64;
+    static constexpr int N = 32;
     int i[N], j[N];
     double *hist[N];
     const tbags::contact::Params *p[N];
