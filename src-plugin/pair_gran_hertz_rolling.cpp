@@ -1018,14 +1018,17 @@ TBAGS_INLINE void PairGranHertzRolling::eval_body(const law::Params *puni)
     ncand = nc;
     if (cand.size() < (size_t) nc + 8) cand.resize(nc + 8);
     for (int k = nc; k < nc + 8; k++) cand[k] = Cand{0, 0, nullptr, nullptr};    // prefetched
-    if (nx0 < nall) {
-      free(x0);
-      nx0 = npack;
-      x0 = static_cast<AtomX *>(aligned_alloc(64, sizeof(AtomX) * (size_t) nx0));
-      if (!x0) error->one(FLERR, "{}: out of memory for {} atoms", STYLE, nx0);
+    cand_nall = 0;    // no skin: the whole list every step (no positions kept)
+    if (cskin > 0.0) {
+      if (nx0 < nall) {
+        free(x0);
+        nx0 = npack;
+        x0 = static_cast<AtomX *>(aligned_alloc(64, sizeof(AtomX) * (size_t) nx0));
+        if (!x0) error->one(FLERR, "{}: out of memory for {} atoms", STYLE, nx0);
+      }
+      memcpy(x0, px, sizeof(AtomX) * (size_t) nall);
+      cand_nall = nall;
     }
-    memcpy(x0, px, sizeof(AtomX) * (size_t) nall);
-    cand_nall = cskin > 0.0 ? nall : 0;    // no skin: the whole list every step
     cand_lastcall = neighbor->lastcall;
   }
   if (n) flush(n);
