@@ -25,14 +25,21 @@ using namespace FixConst;
 namespace law = tbags::contact;
 
 static const char *STYLE = "Fix wall/gran/servo";
-static constexpr int NVECTOR = 11;
+static constexpr int NVECTOR = 13;
+// global restart record: a NaN marker, its length, then the values (files of tbags 0.2 and before
+// hold 11 values and no marker)
+static constexpr int NRESTART = 13;
+// warn when the plate force alternates from step to step by more than this fraction of it
+static constexpr double CHATTER_FRACTION = 0.01;
 
 /* ----------------------------------------------------------------------
    fix ID group wall/gran/servo xplane|yplane|zplane POS SIDE material E nu keyword values ...
      SIDE = +1 (particles on the + side of the plane) or -1
      coeff T friction mu rolling mu_r restitution e   (per particle type or range)
      velocity x|y|z V                 (m/s, number or v_name)
-     servo F gains KP KI vmax VMAX    (normal force target in N, number or v_name)
+     servo F gains KP KI vmax VMAX [filter TAU]
+                                      (normal force target in N, number or v_name; TAU: time
+                                      constant of the low-pass filter on the measured force, s)
      converge TOL N                   (|F - F_target| < TOL |F_target| for N steps)
      bounds LO1 HI1 LO2 HI2           (rectangle in the two tangential axes)
      warn N                           (warn after N steps at vmax)
@@ -84,7 +91,7 @@ FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
   nconv_count = 0;
   saturated_steps = 0;
   warn_steps = 100000;
-  warned = false;
+  warned = warned_unstable = false;
   placed = false;
   ncontact = 0.0;
   rolling = law::ROLLING_NONE;
@@ -226,6 +233,14 @@ void FixWallGranServo::parse_motion(int narg, char **arg, int &iarg)
       if (servo.vmax <= 0.0) error->all(FLERR, "{}: servo vmax must be > 0 m/s", STYLE);
       vmax_set = true;
       iarg += 2;
+    } else if (strcmp(arg[iarg], "filter") == 0) {
+      if (iarg + 1 >= narg) error->all(FLERR, "{}: filter needs a time constant (s)", STYLE);
+      servo.tau = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (servo.tau < 0.0)
+        error->all(FLERR, "{}: servo filter time constant must be >= 0 s (0: no filter), got {}",
+                   STYLE, servo.tau);
+      servo.primed = false;
+      iarg += 2;
     } else {
       break;
     }
@@ -352,7 +367,7 @@ void FixWallGranServo::post_force(int)
   const int t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
   const double wzero[3] = {0.0, 0.0, 0.0};
 
-  double floc[4] = {0.0, 0.0, 0.0, 0.0};
+  double floc[4] = {0.0, 0.0, 0.0, 0.0};    // force on the plate (3), contacts
   law::Contact c;
   c.wall = true;
   c.radj = 0.0;
@@ -397,7 +412,20 @@ void FixWallGranServo::post_force(int)
   for (int k = 0; k < 3; k++) fplate[k] = fall[k];
   ncontact = fall[3];
 
-  if (update_hist) update_plate();
+  if (update_hist) {
+    if (ncontact > 0.0) chatter.add(fplate);
+    else chatter.reset();
+    const double reference = mode[axis] == SERVO ? std::fabs(target) : 0.0;
+    if (chatter.chattering(CHATTER_FRACTION, reference) && !warned_unstable && comm->me == 0) {
+      error->warning(FLERR, "{} {}: the plate force alternates from step to step by {:.3g} N "
+                     "({:.2g} % of it, over the last {} steps): its contacts are at the edge of "
+                     "the time step's numerical stability; reduce the timestep", STYLE, id,
+                     chatter.amplitude, 100.0 * chatter.amplitude / chatter.magnitude,
+                     (int) (1.0 / chatter.RATE));
+      warned_unstable = true;
+    }
+    update_plate();
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -416,8 +444,12 @@ void FixWallGranServo::update_plate()
       // no contact yet: approach at vmax without integrating (no wind-up across the gap)
       bool sat = true;
       double vin = servo.vmax;
-      if (ncontact > 0.0) vin = servo.velocity(target - normal_force(), dt, sat);
-      else servo.integral = 0.0;
+      if (ncontact > 0.0) {
+        vin = servo.velocity(target - servo.measure(normal_force(), dt), dt, sat);
+      } else {
+        servo.integral = 0.0;
+        servo.primed = false;
+      }
       vplate[d] = sense * vin;
       saturated_steps = (sat && vin > 0.0) ? saturated_steps + 1 : 0;
       if (saturated_steps > warn_steps && !warned && comm->me == 0) {
@@ -430,7 +462,7 @@ void FixWallGranServo::update_plate()
     }
   }
   if (tol > 0.0) {
-    if (std::fabs(normal_force() - target) < tol * std::fabs(target)) nconv_count++;
+    if (std::fabs(measured_force() - target) < tol * std::fabs(target)) nconv_count++;
     else nconv_count = 0;
   }
   pos += vplate[axis] * dt;
@@ -439,7 +471,9 @@ void FixWallGranServo::update_plate()
 
 /* ----------------------------------------------------------------------
    1-3 force of the particles on the plate, 4-6 displacement since creation, 7 target,
-   8 normal force - target, 9 contacts, 10 converged (1/0), 11 plate position
+   8 normal force - target, 9 contacts, 10 converged (1/0), 11 plate position,
+   12 the normal force the servo sees (filtered), 13 the part of the force that alternates from
+   step to step (N, averaged over about 1000 steps; near 0 for a stable time step)
 ------------------------------------------------------------------------- */
 
 double FixWallGranServo::compute_vector(int n)
@@ -450,7 +484,9 @@ double FixWallGranServo::compute_vector(int n)
   if (n == 7) return normal_force() - target;
   if (n == 8) return ncontact;
   if (n == 9) return (tol > 0.0 && nconv_count >= nconv) ? 1.0 : 0.0;
-  return pos;
+  if (n == 10) return pos;
+  if (n == 11) return measured_force();
+  return chatter.amplitude;
 }
 
 /* ----------------------------------------------------------------------
@@ -463,7 +499,7 @@ int FixWallGranServo::modify_param(int narg, char **arg)
   int iarg = 0;
   parse_motion(narg, arg, iarg);
   nconv_count = 0;
-  warned = false;
+  warned = warned_unstable = false;
   saturated_steps = 0;
   return iarg;    // variables are resolved by init() at the next run
 
@@ -478,18 +514,29 @@ void FixWallGranServo::reset_dt()
 
 void FixWallGranServo::write_restart(FILE *fp)
 {
-  double list[11] = {pos0, pos, disp[0], disp[1], disp[2], vplate[0], vplate[1], vplate[2],
-                     servo.integral, target, (double) nconv_count};
+  double list[NRESTART + 2] = {std::nan(""), (double) NRESTART, pos0, pos, disp[0], disp[1],
+                               disp[2], vplate[0], vplate[1], vplate[2], servo.integral, target,
+                               (double) nconv_count, servo.filtered, servo.primed ? 1.0 : 0.0};
   if (comm->me == 0) {
     int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 11, fp);
+    fwrite(list, sizeof(double), NRESTART + 2, fp);
   }
 }
 
 void FixWallGranServo::restart(char *buf)
 {
   auto *list = (double *) buf;
+  // tbags 0.3 on: a NaN marker and the record's length before the values
+  const bool marked = std::isnan(list[0]);
+  if (marked) {
+    const int n = (int) list[1];
+    list += 2;
+    if (n >= 13) {
+      servo.filtered = list[11];
+      servo.primed = list[12] != 0.0;
+    }
+  }
   pos0 = list[0];
   pos = list[1];
   for (int d = 0; d < 3; d++) {

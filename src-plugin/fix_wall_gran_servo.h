@@ -74,7 +74,8 @@ class FixWallGranServo : public Fix {
   double tol;
   int nconv, nconv_count;
   bigint saturated_steps, warn_steps;
-  bool warned;
+  bool warned, warned_unstable;
+  tbags::servo::Chatter chatter;    // step-to-step alternation of the plate force
   bool placed;    // the start-position check ran (first setup after the fix was defined)
 
   double fplate[3];      // force of the particles on the plate (summed over ranks)
@@ -84,6 +85,12 @@ class FixWallGranServo : public Fix {
   void parse_motion(int, char **, int &);
   void set_velocity_from(int, char **, int);
   double normal_force() const { return -sense * fplate[axis]; }
+  // the normal force the servo acts on: filtered once it has measured (as normal_force() with
+  // no filter)
+  double measured_force() const
+  {
+    return (mode[axis] == SERVO && servo.primed) ? servo.filtered : normal_force();
+  }
   void update_plate();
   void check_placement();
 };

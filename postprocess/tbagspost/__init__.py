@@ -10,6 +10,7 @@ Modules, one job each:
   shape     deformed shape of the bag (side view and two central cross-sections)
   network   contact-force network and bond tension in the central cross-section
   triax     triaxial runs (calibration/in.triax): stress ratio and volumetric strain
+  realizations  several realizations of one test: mean curves, spread of the reported figures
   vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
   cli       the command line (python3 -m tbagspost --help)
 Every reader stops with a one-line SystemExit message naming the file on a missing, truncated

@@ -7,7 +7,7 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import fail, network, shape, shear, style, triax, vtkout
+from tbagspost import fail, network, realizations, shape, shear, style, triax, vtkout
 from tbagspost.run import Run
 
 DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
@@ -28,7 +28,11 @@ particles/contacts/bonds/plates.pvd (time value = u in mm).
 A triaxial RUN_DIR (a CSV with eps_a_pct, ... from in.triax, no shear.csv) gets triax.png:
 sigma1/sigma3 and eps_v against eps_a; several of them also triax-overlay.png.
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.
-Shape and network figures are made at the dump nearest to each --u (default: the last dump)."""
+Shape and network figures are made at the dump nearest to each --u (default: the last dump).
+With --realizations, the RUN_DIRs are realizations of one test (fills of different seeds; runs of
+the same name, e.g. r1/F5500 and r2/F5500, form a group): their mean curves with +-1 standard
+deviation and min-max, and the table of peak S, S at 5 mm, contraction and dilatancy with their
+spread go to OUTDIR (default: the runs' common parent folder / realizations)."""
 
 
 def parse(argv=None):
@@ -43,6 +47,8 @@ def parse(argv=None):
     ap.add_argument("-o", "--outdir", default=None, help="output folder (default: RUN_DIR/figures)")
     ap.add_argument("--band", type=float, default=None, metavar="MM",
                     help="half width (mm) of the central sections (default: one mean sand diameter, >= 2.5)")
+    ap.add_argument("--realizations", action="store_true",
+                    help="the runs are realizations of one test: their spread (realizations.md, .csv, .png)")
     ap.add_argument("--dt", type=float, default=None, help="time step (s) if the run has no log")
     ap.add_argument("--format", default="png", help="figure formats, e.g. png,pdf (default png)")
     ap.add_argument("--dpi", type=float, default=None, help="resolution of raster figures (default 200)")
@@ -149,4 +155,10 @@ def main(argv=None):
     for name, fig, paths in overlays:
         for path in style.save(fig, overlay_dir(paths, args) / name, args.format, args.dpi):
             print("wrote %s" % path)
+    if args.realizations:
+        out = Path(args.outdir) if args.outdir else overlay_dir(
+            [r.path.resolve().parent if r.name.startswith("F") else r.path for r in shear_runs],
+            args).parent / "realizations"
+        print(realizations.write(shear_runs, out))
+        print("wrote %s/realizations.md, .csv, .png and curves_*.csv" % out)
     return 0

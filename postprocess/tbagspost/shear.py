@@ -1,7 +1,8 @@
 """S-u and w-u of shear runs (the paper's Part 2, Fig. 3): shear force S in kN and vertical
 displacement w in mm against the horizontal displacement u in mm, one curve per run, labelled
 with its F_v. w is counted from the start of shearing (w < 0: contraction, the top plate moved
-down; > 0: dilatancy)."""
+down; > 0: dilatancy). The curves are the CSV's means over each output interval; where the CSV
+has the interval's min and max (S_min_N, S_max_N, w_min_mm, w_max_mm), a light band shows them."""
 import numpy as np
 
 from tbagspost import style
@@ -15,8 +16,15 @@ def figure(runs, title=None):
     for run in runs:
         d = run.csv
         u, s, w = d["u_mm"], d["S_N"] / 1000, d["w_mm"] - d["w_mm"][0]
-        a_s.plot(u, s, label=run.label)
-        a_w.plot(u, w, label=run.label)
+        line, = a_s.plot(u, s, label=run.label)
+        a_w.plot(u, w, label=run.label, color=line.get_color(), linestyle=line.get_linestyle())
+        names = d.dtype.names
+        if "S_min_N" in names and "S_max_N" in names:
+            a_s.fill_between(u, d["S_min_N"] / 1000, d["S_max_N"] / 1000, color=line.get_color(),
+                             alpha=0.15, lw=0)
+        if "w_min_mm" in names and "w_max_mm" in names:
+            a_w.fill_between(u, d["w_min_mm"] - d["w_mm"][0], d["w_max_mm"] - d["w_mm"][0],
+                             color=line.get_color(), alpha=0.15, lw=0)
         k = int(np.argmax(s))
         drops = np.diff(s)
         stats.append(dict(run=run.name, Fv_kN=run.fv_kN, S_peak_kN=float(s[k]), u_peak_mm=float(u[k]),

@@ -109,7 +109,7 @@ fix_modify top velocity x 0.02 servo ${F} gains 5e-3 1.5
 fix rec all print 100 "$(step) ${ftop} ${fbot} $(f_top[4])" file shear.txt screen no
 run ${nshear}
 unfix rec
-fix_modify top velocity x 0 servo ${F2} gains 2e-3 0
+fix_modify top velocity x 0 servo ${F2} gains 2e-3 0 filter 1e-4
 fix halt all halt 1000 v_conv == 1 error continue
 run ${maxsteps}
 print "RETARGET $(step) ${ftop} ${fbot} ${weight}"
@@ -125,7 +125,7 @@ read_restart servo.restart
 comm_modify vel yes
 fix bottom all wall/gran/servo zplane 0.0 +1 material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2
 fix top all wall/gran/servo zplane 0 -1 material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 &
-    servo ${F2} gains 2e-3 0 vmax 0.05
+    servo ${F2} gains 2e-3 0 vmax 0.05 filter 1e-4
 fix 1 all nve/sphere
 fix 2 all gravity 9.81 vector 0 0 -1
 run 2000
@@ -180,6 +180,8 @@ def test_servo_follows_new_target(servo_run):
 
 
 def test_servo_restart_continues(servo_run):
+    """The plate's state (position, integral, target and the filtered force) survives
+    write_restart / read_restart: the continued run is the same to round-off."""
     wd, res = servo_run
     ref = line(res, "FINAL")
     res2 = lmprun.run(SERVO_RESTART, wd, variables={"F2": F2}).check()

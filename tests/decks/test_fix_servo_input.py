@@ -43,6 +43,8 @@ BAD = [
     (PLATE + " servo 10 gains 0 0 vmax 0.01", "servo gains must be KP > 0"),
     (PLATE + " servo 10 gains 1e-3 0 vmax -1", "servo vmax must be > 0"),
     (PLATE + " servo 10", "servo needs 'gains KP KI' and 'vmax V'"),
+    (PLATE + " servo 10 gains 1e-3 0 vmax 0.01 filter -1e-4", "servo filter time constant must be >= 0"),
+    (PLATE + " servo 10 gains 1e-3 0 vmax 0.01 filter", "filter needs a time constant"),
     (PLATE + " velocity q 0.1", "velocity dimension must be x, y or z"),
     (PLATE.replace("zplane 0.0", "zplane 0.0095"), "the plate starts 0.8 radii inside a particle"),
     (PLATE + " velocity x v_nothing", "velocity variable nothing does not exist"),

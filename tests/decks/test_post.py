@@ -43,11 +43,11 @@ def last(run, kind="grains"):
 def test_run_has_dumps_and_u_at_steps(run):
     steps = run.steps()
     assert len(steps) >= 2 and steps == run.steps("contacts") == run.steps("bonds")
-    assert run.dt == 2e-6
-    d = run.csv
-    for step in steps:   # dumps fall on CSV rows here: the interpolation must give the row's u
-        row = np.isclose(d["time_s"], step * run.dt, rtol=0, atol=1e-9)
-        assert row.sum() == 1 and run.at_step(step) == pytest.approx(float(d["u_mm"][row][0]), abs=1e-9)
+    assert run.dt == 1.5e-6
+    # dumps every 0.5 mm of u from u = 0; the CSV's rows are interval means (u at the interval's
+    # mean time), and u is linear in time, so the interpolation gives the dump's u exactly (to the
+    # CSV's 4 decimals)
+    assert [run.at_step(s) for s in steps] == pytest.approx([0.5 * k for k in range(len(steps))], abs=2e-4)
     assert run.step_near(100.0) == steps[-1]
 
 

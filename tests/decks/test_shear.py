@@ -28,8 +28,11 @@ def test_protocol_on_a_tiny_bag(filled):
     assert abs(target - 5500 * 7 * 7 / 79 ** 2) < 1e-9
     d = np.genfromtxt(filled / "shear.csv", delimiter=",", names=True)
     print("CSV rows: u = %s mm, S = %s N, F_v = %s N" % (d["u_mm"], d["S_N"], d["Fv_N"]))
-    assert len(d) >= 2 and np.allclose(np.diff(d["u_mm"]), 0.1, atol=1e-3)
-    assert (d["S_N"][d["u_mm"] > 0] > 0).all() and np.abs(d["Fv_N"] - target).max() < 0.1 * target
+    # rows: u = 0, then the means of each 0.1 mm (u at the interval's middle)
+    assert len(d) == 4 and np.allclose(d["u_mm"], [0, 0.05, 0.15, 0.25], atol=1e-3)
+    assert (d["S_N"][1:] > 0).all()
+    # F_v held: each interval's mean within 1 % of the target
+    assert np.abs(d["Fv_N"][1:] - target).max() < 0.01 * target
     assert list(filled.glob("dump.grains.*")) and list(filled.glob("dump.contacts.*"))
 
 
@@ -51,13 +54,14 @@ def test_resume_from_checkpoint(filled, tmp_path):
     lmprun.run(INPUTS / "in.shear", tmp_path, variables=v).check()
     straight = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)
     older = min(tmp_path.glob("shear.restart.*"), key=lambda p: p.stat().st_mtime_ns)
+    # the checkpoint's row is not written again: the resumed rows continue after it
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(v, restart=older.name)).check()
     rows = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)[len(straight):]
     first = rows[0]
     same = straight[np.isclose(straight["u_mm"], first["u_mm"])][0]
     print("resumed at u = %.2f mm: S %.3f N (straight %.3f), w %.4f mm (straight %.4f); last u %.2f mm"
           % (first["u_mm"], first["S_N"], same["S_N"], first["w_mm"], same["w_mm"], rows["u_mm"][-1]))
-    assert 0.0 < first["u_mm"] < 0.6 and rows["u_mm"][-1] == pytest.approx(0.6, abs=1e-3)
+    assert 0.0 < first["u_mm"] < 0.6 and rows["u_mm"][-1] == pytest.approx(0.55, abs=1e-3)
     assert abs(first["S_N"] - same["S_N"]) < 0.01 * abs(same["S_N"])
     assert abs(first["w_mm"] - same["w_mm"]) < 1e-3
     assert "SHEARED: u 0.600 mm" in res.output
@@ -77,3 +81,33 @@ def test_same_on_one_and_two_ranks(filled, tmp_path):
         csv[ranks] = (wd / "shear.csv").read_text()
     print(csv[2])
     assert csv[1] == csv[2] and len(csv[1].splitlines()) >= 4
+
+
+def test_csv_rows_are_interval_means(filled, tmp_path):
+    """Each CSV row holds the mean, min and max over every step of its interval: the same run's
+    per-step trace (trace 1) averaged over the row's steps gives the row, column by column."""
+    import shutil
+    shutil.copy(filled / "fill.data", tmp_path)
+    lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, v=0.02, ufinal=0.0003, trace=1)).check()
+    rows = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)
+    tr = np.genfromtxt(tmp_path / "shear.steps.csv", delimiter=",", names=True)
+    n = int(rows["steps"][1])
+    assert rows["steps"][0] == 1 and (rows["steps"][1:] == n).all() and n == round(1e-4 / (0.02 * 1.5e-6))
+    # the trace starts at the u = 0 step (the CSV's first row) and has every step once
+    s0 = tr["step"][0]
+    assert np.all(np.diff(tr["step"]) == 1) and len(tr) > n * (len(rows) - 1)
+    for k in range(1, len(rows)):
+        chunk = tr[(tr["step"] > s0 + (k - 1) * n) & (tr["step"] <= s0 + k * n)]
+        assert len(chunk) == n
+        for col, scale in (("time_s", 1e-7), ("u_mm", 1e-4), ("w_mm", 1e-4), ("S_N", 1e-4),
+                           ("Fv_N", 1e-4), ("zplate_mm", 1e-4)):
+            assert rows[col][k] == pytest.approx(chunk[col].mean(), abs=scale), (k, col)
+        for col in ("w", "S", "Fv", "zplate"):
+            unit = "_N" if col in ("S", "Fv") else "_mm"
+            assert rows[col + "_min" + unit][k] == pytest.approx(chunk[col + unit].min(), abs=1e-4)
+            assert rows[col + "_max" + unit][k] == pytest.approx(chunk[col + unit].max(), abs=1e-4)
+    # the first row is the one step before shearing
+    assert rows["S_N"][0] == pytest.approx(tr["S_N"][0], abs=1e-4)
+    # the means differ from the interval's last step, as they should for a varying force
+    last = np.array([tr["S_N"][tr["step"] == s0 + k * n][0] for k in range(1, len(rows))])
+    assert np.abs(rows["S_N"][1:] - last).max() > 1e-3
