@@ -101,6 +101,8 @@ def parse_args(argv):
                    help="runs and the cache (evaluations.json, prep.json): rerun to resume")
     p.add_argument("--out", default=str(HERE / "results"), help="report directory")
     p.add_argument("--no-figure", action="store_true", help="skip the figure")
+    p.add_argument("--sand-include", action="store_true",
+                   help="only rewrite OUT/sand_calibrated.lmp from OUT/runs.csv (no runs)")
     a = p.parse_args(argv)
 
     def check(name, value, opt):
@@ -557,8 +559,10 @@ def write_report(cal, data, rows, out_dir):
                 ", ".join("%.2g" % r["I_%g" % p] for p in ps),
                 ", ".join("%.0f" % r["seconds_%g" % p] for p in ps)))
         L.append("\nFiles: runs.csv (this table, all columns), curve_start_*.csv and curve_best_*.csv "
-                 "(the deck's CSV), triaxial.png (figure).\n")
+                 "(the deck's CSV), triaxial.png (figure), sand_calibrated.lmp (the best parameters for "
+                 "the shear decks: -var sand calibrated).\n")
         (tmp / "report.md").write_text("\n".join(L))
+        (tmp / SAND_INCLUDE).write_text(sand_include(best, len(rows)))
         if not a.no_figure:
             figure(tmp / "triaxial.png", data, curves, ps, paper, best)
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -566,6 +570,37 @@ def write_report(cal, data, rows, out_dir):
             f.replace(out_dir / f.name)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+    return best
+
+
+SAND_INCLUDE = "sand_calibrated.lmp"
+
+
+def sand_include(best, n_evaluations, nu=0.1):
+    """The best parameters as a LAMMPS include (read by inputs/sand.lmp for -var sand calibrated):
+    the one place the decks take the calibrated sand from."""
+    return ("# Calibrated sand parameters: written by calibration/fit.py (the best of %d evaluations,\n"
+            "# misfit J = %.4f); read by inputs/sand.lmp for -var sand calibrated. Rewrite it with\n"
+            "# ./tbags calibrate (or fit.py --sand-include from runs.csv), not by hand.\n"
+            "variable sand_E equal %.6g\nvariable sand_nu equal %g\nvariable sand_mu equal %.6g\n"
+            "variable sand_mur equal %.6g\n"
+            "variable sand_source string 'calibration/results, fit n = %d, J = %.4f'\n"
+            % (n_evaluations, best["J"], best["E"], nu, best["mu"], best["mur"], best["n"], best["J"]))
+
+
+def rewrite_sand_include(out_dir):
+    """sand_calibrated.lmp from an existing runs.csv (the row of least misfit J)."""
+    path = Path(out_dir) / "runs.csv"
+    if not path.is_file():
+        fail("no %s: run the calibration first" % path)
+    with open(path, newline="") as fh:
+        rows = [{k: float(v) for k, v in r.items() if k in ("n", "mu", "mur", "E", "J")}
+                for r in csv.DictReader(fh)]
+    if not rows:
+        fail("%s has no evaluations" % path)
+    best = min(rows, key=lambda r: r["J"])
+    best["n"] = int(best["n"])
+    (Path(out_dir) / SAND_INCLUDE).write_text(sand_include(best, len(rows)))
     return best
 
 
@@ -596,6 +631,15 @@ def figure(path, data, curves, ps, paper, best):
 
 def main(argv):
     a = parse_args(argv)
+    if a.sand_include:
+        try:
+            best = rewrite_sand_include(a.out)
+        except FitError as e:
+            print("fit.py: error: %s" % e, file=sys.stderr)
+            return 2
+        print("fit.py: %s: mu %.4g mur %.4g E %.3g (evaluation %d)"
+              % (Path(a.out) / SAND_INCLUDE, best["mu"], best["mur"], best["E"], best["n"]))
+        return 0
     try:
         lmp_command()
         data = load_data(a.data, a.pressures)

@@ -1,23 +1,26 @@
 #!/usr/bin/python3
-"""Check the paper's findings (MODEL.md section 4) on the runs of `./tbags shear trends`.
+"""Check the paper's findings (Panganiban et al. 2025, Part 2) on the runs of `./tbags shear trends`.
 
-usage: /usr/bin/python3 inputs/check_trends.py TRENDS_DIR          (F5500/, F3730/, F1960/ inside)
+usage: /usr/bin/python3 inputs/check_trends.py TRENDS_DIR    (F5500/, F3730/, F1960/ inside, or
+                                                              realizations r1/, r2/, ... each with them)
        /usr/bin/python3 inputs/check_trends.py --speed RUN_A RUN_B [--tol 0.1]
 
-Trends (from each load's shear.csv, and the last dumps of the highest load):
-  1. shear strength rises with F_v: peak S(5.50 kN) > peak S(3.73 kN) > peak S(1.96 kN);
-  2. w contracts first, then dilates: the lowest w (relative to w at u = 0) comes before the end
-     and w then rises by more than 1 % of the contraction, at every load;
-  3. larger F_v, more contraction and less dilatancy: contraction (w0 - w_min) rises with F_v,
-     dilatancy (w_end - w_min) falls with F_v;
-  4. the top surface detaches from the top plate: at the last dump of the highest load, some of
-     the bag's top-face particles are more than 0.5 mm below the plate;
+Each finding is asserted in every realization, with a threshold that says how strongly it must
+hold (H: the sand height, (nz - 2) x 5 mm, from the run's log):
+  1. shear strength rises with F_v: peak S of each load at least RISE (1.1) times that of the next
+     lower load;
+  2. w contracts first, then dilates, at every load: the contraction (w at u = 0 minus the lowest w)
+     and the dilatancy (w at the end minus the lowest w) each at least W_MIN (0.1 %) of H;
+  3. larger F_v, more contraction and less dilatancy: contraction rises and dilatancy falls with
+     F_v, each step by more than W_MIN of H;
+  4. the top surface detaches from the top plate: at the last dump of the highest load at least
+     DETACH (10 %) of the bag's top-face particles are more than 0.5 mm below the plate;
   5. contact forces are larger near the edges: in the central cross-section (|y - y_c| < 10 mm)
      the mean normal force of the contacts on sand (sand-sand and bag-sand) within 10 mm of the
-     bag's sides exceeds that within the central half.
+     bag's sides is at least EDGE (1.2) times that within the central half.
 Speed (quasi-static check): the two runs' S-u curves, interpolated on the shared u range beyond
 0.5 mm, differ by at most TOL times the larger run's peak S (root mean square and maximum).
-Prints every measured number; exits 1 if a check fails.
+Prints every measured number and a table of the realizations; exits 1 if a check fails.
 """
 import argparse
 import re
@@ -30,6 +33,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
 from tbagspost.dumps import read_contacts, read_grains    # noqa: E402  (the project's dump readers)
 
 LOADS = (5500, 3730, 1960)
+RISE, W_MIN, DETACH, EDGE = 1.1, 0.001, 0.10, 1.2
 
 
 def read_csv(run):
@@ -94,32 +98,58 @@ def edge_forces(run, band=0.010):
     return float(c["fn"][edge].mean()), float(c["fn"][centre].mean()), int(edge.sum()), int(centre.sum())
 
 
+def sand_height_mm(run):
+    """(nz - 2) x 5 mm from the 'nz' of the run's log (in.shear echoes its variables)."""
+    log = (Path(run) / "log.shear").read_text(errors="replace")
+    m = re.search(r"^variable\s+nz\s+index\s+(\d+)", log, re.M)
+    nz = int(m.group(1)) if m else 17
+    for line in log.splitlines():     # a -var on the command line wins over the deck's index
+        m2 = re.search(r"-var nz (\d+)", line)
+        if m2:
+            nz = int(m2.group(1))
+    return (nz - 2) * 5.0
+
+
 def check_trends(root):
     root = Path(root)
     runs = {f: root / ("F%d" % f) for f in LOADS}
     data = {f: read_csv(r) for f, r in runs.items()}
+    H = sand_height_mm(runs[5500])
+    wmin = W_MIN * H
     results = []
     peak = {f: float(d["S_N"].max()) for f, d in data.items()}
+    print("%s (sand height %.0f mm)" % (root, H))
     print("load (paper kN) | F_v here (N) | peak S (N) | u at peak (mm) | contraction (mm) | u at w_min (mm) | dilatancy (mm)")
     wp = {}
     for f, d in data.items():
         wp[f] = w_path(d)
         print("%15.2f | %12.1f | %10.1f | %14.2f | %16.4f | %15.2f | %14.4f"
               % (f / 1000, np.median(d["Fv_N"]), peak[f], d["u_mm"][np.argmax(d["S_N"])], wp[f][0], wp[f][2], wp[f][1]))
-    results.append(("1. peak S rises with F_v", peak[5500] > peak[3730] > peak[1960]))
-    results.append(("2. w contracts, then dilates (every load)",
-                    all(c > 0 and dl > 0.01 * c for c, dl, _ in wp.values())))
-    results.append(("3a. more contraction at higher F_v", wp[5500][0] > wp[3730][0] > wp[1960][0]))
-    results.append(("3b. less dilatancy at higher F_v", wp[5500][1] < wp[3730][1] < wp[1960][1]))
+    results.append(("1. peak S rises with F_v (x %.2f, %.2f; >= %g each)" % (peak[5500] / peak[3730], peak[3730] / peak[1960], RISE),
+                    peak[5500] >= RISE * peak[3730] and peak[3730] >= RISE * peak[1960]))
+    results.append(("2. w contracts, then dilates, at every load (each >= %.3f mm)" % wmin,
+                    all(c >= wmin and dl >= wmin for c, dl, _ in wp.values())))
+    results.append(("3a. more contraction at higher F_v (steps > %.3f mm)" % wmin,
+                    wp[5500][0] - wp[3730][0] > wmin and wp[3730][0] - wp[1960][0] > wmin))
+    results.append(("3b. less dilatancy at higher F_v (steps > %.3f mm)" % wmin,
+                    wp[3730][1] - wp[5500][1] > wmin and wp[1960][1] - wp[3730][1] > wmin))
     frac, gmax, ntop = detachment(runs[5500])
     print("top face at the last dump (5.50 kN): %.0f %% of %d particles more than 0.5 mm below the plate, largest gap %.2f mm"
           % (100 * frac, ntop, gmax))
-    results.append(("4. the top surface detaches from the top plate", frac > 0))
+    results.append(("4. the top surface detaches (%.0f %% of the top face; >= %.0f %%)" % (100 * frac, 100 * DETACH),
+                    frac >= DETACH))
     fe, fc, ne, nc = edge_forces(runs[5500])
     print("central cross-section (5.50 kN, last dump): mean normal force %.3f N near the sides (%d contacts), "
           "%.3f N in the central half (%d contacts), ratio %.2f" % (fe, ne, fc, nc, fe / fc))
-    results.append(("5. contact forces larger near the edges", fe > fc))
+    results.append(("5. contact forces larger near the edges (ratio %.2f; >= %g)" % (fe / fc, EDGE), fe >= EDGE * fc))
     return results
+
+
+def realizations(root):
+    """The realization folders under root (r1, r2, ...), or root itself."""
+    reals = sorted((p for p in Path(root).glob("r*") if p.is_dir() and p.name[1:].isdigit()),
+                   key=lambda p: int(p.name[1:]))
+    return reals or [Path(root)]
 
 
 def check_speed(run_a, run_b, tol):
@@ -148,7 +178,20 @@ def main(argv=None):
     else:
         if len(a.dirs) != 1:
             raise SystemExit("check_trends: give one trends directory (with F5500/, F3730/, F1960/)")
-        results = check_trends(a.dirs[0])
+        reals = realizations(a.dirs[0])
+        table = []
+        for r in reals:
+            res = check_trends(r)
+            for name, ok in res:
+                print("%-4s %s" % ("PASS" if ok else "FAIL", name))
+            table.append((r.name, res))
+            print()
+        print("finding | " + " | ".join(name for name, _ in table))
+        for k, (name, _) in enumerate(table[0][1]):
+            print("%s | %s" % (name.split(" (")[0], " | ".join("PASS" if res[k][1] else "FAIL" for _, res in table)))
+        results = [(name, ok) for _, res in table for name, ok in res]
+        print("%d of %d checks pass in %d realization(s)" % (sum(ok for _, ok in results), len(results), len(table)))
+        return 0 if all(ok for _, ok in results) else 1
     for name, ok in results:
         print("%-4s %s" % ("PASS" if ok else "FAIL", name))
     return 0 if all(ok for _, ok in results) else 1

@@ -30,12 +30,14 @@ METRICS = OrderedDict([
 def metrics(d):
     """The reported figures of one run's CSV (structured array of in.shear's shear.csv)."""
     u, S, w = d["u_mm"], d["S_N"], d["w_mm"] - d["w_mm"][0]
+    du = float(np.median(np.diff(u[1:]))) if len(u) > 2 else 0.0
     k = int(np.argmax(S))
     kmin = int(np.argmin(w))
     return OrderedDict([
         ("S_peak_N", float(S[k])),
         ("u_peak_mm", float(u[k])),
-        ("S_5mm_N", float(np.interp(U_DESIGN, u, S)) if u[-1] >= U_DESIGN else float("nan")),
+        # the row whose interval holds u = 5 mm (a run to 5 mm: its last row, centred at 4.95)
+        ("S_5mm_N", float(np.interp(U_DESIGN, u, S)) if u[-1] + 0.5 * du >= U_DESIGN - 1e-2 else float("nan")),
         ("contraction_mm", float(-w[kmin])),
         ("dilatancy_mm", float(w[-1] - w[kmin])),
         ("Fv_N", float(np.mean(d["Fv_N"][1:]))),

@@ -1,5 +1,9 @@
 """inputs/in.fill on a small bag: the exact count at void ratio 0.68 +/- 0.01, equal number
 fractions of the ten sizes, settled with small overlaps and every bag bond intact."""
+import re
+import shutil
+from pathlib import Path
+
 import numpy as np
 
 import lmprun
@@ -46,3 +50,63 @@ def test_bad_count(tmp_path):
     res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables={
         "nx": 5, "ny": 5, "nz": 5, "tbags": lmprun.ROOT, "per_size": 0})
     assert res.returncode != 0 and "per_size must be >= 1" in res.output
+
+
+def sand_rows(path):
+    """Sand grains of a fill.data, sorted by id: id, diameter, x, y, z."""
+    data = Path(path).read_text()
+    atoms = data[data.index("Atoms"):data.index("Velocities")].splitlines()[2:]
+    rows = np.array([[float(x) for x in l.split()[:8]] for l in atoms if l.strip()])
+    sand = rows[rows[:, 2] == 2]
+    sand = sand[np.argsort(sand[:, 0])]
+    return sand[:, [0, 3, 5, 6, 7]]
+
+
+SMALL = {"nx": 7, "ny": 7, "nz": 5, "nsettle": 2000, "ke_tol": 1.0}
+
+
+def test_seed_changes_the_packing(tmp_path):
+    """-var seed gives another random packing (not round-off): the same grains (count and sizes),
+    other positions; the same seed gives the same packing."""
+    lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path, variables=SMALL).check()
+    fills = {}
+    for name, seed in (("a", 4821), ("b", 4822), ("c", 4821)):
+        lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(
+            SMALL, tbags=lmprun.ROOT, seed=seed, out="fill.%s.data" % name)).check()
+        fills[name] = sand_rows(tmp_path / ("fill.%s.data" % name))
+    a, b, c = fills["a"], fills["b"], fills["c"]
+    moved = np.linalg.norm(a[:, 2:] - b[:, 2:], axis=1)
+    print("%d grains; seeds 4821 and 4822: median position difference %.2f mm" % (len(a), np.median(moved) * 1e3))
+    assert len(a) == len(b) > 50 and np.array_equal(np.sort(a[:, 1]), np.sort(b[:, 1]))
+    assert np.median(moved) > 1e-3          # a millimetre and more: another packing
+    assert np.array_equal(a, c)             # the seed, not chance, decides
+
+
+def test_sand_parameter_sets(tmp_path):
+    """-var sand paper|calibrated: the paper's sand, or the one calibration/fit.py wrote to
+    calibration/results/sand_calibrated.lmp; a changed fit file changes the decks' friction."""
+    lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path, variables=SMALL).check()
+    fit = (lmprun.ROOT / "calibration" / "results" / "sand_calibrated.lmp").read_text()
+    mu = float(re.search(r"variable sand_mu equal (\S+)", fit).group(1))
+    mur = float(re.search(r"variable sand_mur equal (\S+)", fit).group(1))
+
+    def coeff(root, sand):
+        res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(
+            SMALL, tbags=root, sand=sand, nsettle=10)).check()
+        # the settling pair_coeff of the sand as LAMMPS ran it (variables substituted)
+        log = (tmp_path / "log.lammps").read_text()
+        line = [l for l in log.splitlines() if l.startswith("pair_coeff") and " 2 2 " in l][-1]
+        w = line.split()
+        return float(w[w.index("friction") + 1]), float(w[w.index("rolling") + 1])
+
+    assert coeff(lmprun.ROOT, "paper") == (0.31, 0.05)
+    assert coeff(lmprun.ROOT, "calibrated") == (mu, mur)
+    # a copy of the tree with another fit: the deck follows the file
+    other = tmp_path / "tree"
+    shutil.copytree(lmprun.ROOT / "inputs", other / "inputs")
+    (other / "calibration" / "results").mkdir(parents=True)
+    (other / "calibration" / "results" / "sand_calibrated.lmp").write_text(
+        fit.replace("sand_mu equal %s" % re.search(r"sand_mu equal (\S+)", fit).group(1), "sand_mu equal 0.555"))
+    assert coeff(other, "calibrated") == (0.555, mur)
+    res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(SMALL, tbags=lmprun.ROOT, sand="toyoura"))
+    assert res.returncode != 0 and "sand must be paper or calibrated (got toyoura)" in res.output

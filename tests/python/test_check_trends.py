@@ -82,6 +82,10 @@ def test_all_trends_pass(tmp_path, capsys):
     (dict(dilation=(0.3, 0.2, 0.1)), "3b."),
     (dict(gap_mm=0.2), "4."),
     (dict(edge=(1.0, 5.0)), "5."),
+    # the thresholds: orderings that hold, but too weakly to be a finding
+    (dict(peaks=(900, 850, 800)), "1."),         # x 1.06 per load step < 1.1
+    (dict(edge=(1.1, 1.0)), "5."),               # edge-to-centre 1.1 < 1.2
+    (dict(contraction=(0.3, 0.25, 0.1)), "3a."),  # a step of 0.05 mm < 0.1 % of 75 mm
 ])
 def test_each_check_can_fail(tmp_path, kw, which):
     names = failed(ct.check_trends(make_trends(tmp_path, **kw)))
@@ -106,3 +110,16 @@ def test_missing_and_truncated(tmp_path):
     dump.write_text(dump.read_text().rsplit("\n", 3)[0] + "\n")
     with pytest.raises(SystemExit, match="truncated"):
         ct.check_trends(run)
+
+
+def test_every_realization_is_checked(tmp_path, capsys):
+    """A folder of realizations (r1, r2): each is checked, the table lists both, one failing
+    realization fails the whole check."""
+    make_trends(tmp_path / "r1" if (tmp_path / "r1").mkdir() is None else None)
+    (tmp_path / "r2").mkdir()
+    make_trends(tmp_path / "r2", peaks=(700, 900, 400))
+    assert [p.name for p in ct.realizations(tmp_path)] == ["r1", "r2"]
+    assert ct.main([str(tmp_path)]) == 1
+    out = capsys.readouterr().out
+    assert "11 of 12 checks pass in 2 realization(s)" in out
+    assert "1. peak S rises with F_v | PASS | FAIL" in out
