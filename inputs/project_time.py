@@ -10,7 +10,7 @@ and shearing loops together: all contacts, bonds and plates) at P ranks is appli
 bag. Assumptions, printed with the table: the fill stage has the same fixed step counts at every
 size (in.fill) and costs no more per particle-step than shearing (its grains grow from half size);
 compression takes the measured number of steps times the ratio of sand heights; shearing takes
-u_final / (v dt) steps per load. Ranks beyond those measured are extrapolated with ideal scaling
+u_final / (v dt) steps per load (dt of the measured run). Ranks beyond those measured are extrapolated with ideal scaling
 from the largest measured count (marked), which a larger bag approaches better than the demo bag.
 """
 import argparse
@@ -23,7 +23,17 @@ LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps wi
 SIZE = re.compile(r"BAG (\d+) x (\d+) x (\d+): (\d+) particles")
 
 # the paper's protocol (MODEL.md section 3)
-PAPER = dict(nx=81, ny=81, nz=17, loads=(5500, 3730, 1960), v=0.004, ufinal=0.015, dt=2e-6)
+PAPER = dict(nx=81, ny=81, nz=17, loads=(5500, 3730, 1960), v=0.004, ufinal=0.015)
+DT_LINE = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
+DT_DECK = re.compile(r"^variable\s+dt\s+index\s+(\S+)", re.M)
+
+
+def timestep(shear_log):
+    """The time step of the measured shear run (its TIMESTEP line), else in.shear's default."""
+    m = DT_LINE.search(shear_log.read_text(errors="replace")) if shear_log.is_file() else None
+    if m is None:
+        m = DT_DECK.search((Path(__file__).resolve().parent / "in.shear").read_text())
+    return float(m.group(1))
 D_MIN, D_STEP, E0 = 3.60465e-3, 0.310078e-3, 0.68
 
 
@@ -56,8 +66,9 @@ def project(est_dir, ranks):
         raise SystemExit("project_time: no BAG line in %s" % (est_dir / "log.bag"))
     nx, ny, nz = (int(g) for g in m.groups()[:3])
     fill_steps = sum(s for _, _, s, _ in loops(est_dir / "log.fill"))
-    cost, comp_steps = {}, None
+    cost, comp_steps, dt = {}, None, None
     for d in sorted(est_dir.glob("np*")):
+        dt = dt or timestep(d / "log.shear")
         runs = loops(d / "log.shear")
         p = runs[0][1]
         cost[p] = sum(t for t, _, _, _ in runs) / sum(s * a for _, _, s, a in runs)
@@ -66,7 +77,7 @@ def project(est_dir, ranks):
         raise SystemExit("project_time: no np*/log.shear in %s" % est_dir)
     atoms = bag_particles(PAPER["nx"], PAPER["ny"], PAPER["nz"]) + sand_grains(PAPER["nx"], PAPER["ny"], PAPER["nz"])
     comp_paper = comp_steps * (PAPER["nz"] - 2) / (nz - 2)
-    shear_steps = PAPER["ufinal"] / (PAPER["v"] * PAPER["dt"])
+    shear_steps = PAPER["ufinal"] / (PAPER["v"] * dt)
     steps_per_load = comp_paper + shear_steps
     rows = []
     pmax = max(cost)
@@ -74,7 +85,7 @@ def project(est_dir, ranks):
         c = cost[p] if p in cost else cost[pmax] * pmax / p
         rows.append((p, c, p not in cost, fill_steps * atoms * c / 3600,
                      steps_per_load * atoms * c / 3600))
-    return dict(size=(nx, ny, nz), atoms=atoms, fill_steps=fill_steps, comp_steps=comp_steps,
+    return dict(size=(nx, ny, nz), atoms=atoms, fill_steps=fill_steps, comp_steps=comp_steps, dt=dt,
                 comp_paper=comp_paper, shear_steps=shear_steps, rows=rows)
 
 
@@ -82,9 +93,9 @@ def report(r):
     nx, ny, nz = r["size"]
     out = ["Projected time of `./tbags shear paper` (81 x 81 x 17 bag, %d particles; 3 loads)" % r["atoms"],
            "measured on the %d x %d x %d bag's shear stage; steps: fill %d, compression %d x %.1f "
-           "(sand height ratio) = %.0f, shear %.0f per load"
+           "(sand height ratio) = %.0f, shear %.0f per load (dt %g s)"
            % (nx, ny, nz, r["fill_steps"], r["comp_steps"], (PAPER["nz"] - 2) / (nz - 2), r["comp_paper"],
-              r["shear_steps"]),
+              r["shear_steps"], r["dt"]),
            "%6s %22s %10s %14s %12s" % ("ranks", "us per particle-step", "fill (h)", "per load (h)", "total (h)")]
     for p, c, extrapolated, fill_h, load_h in r["rows"]:
         out.append("%6d %20.3f%2s %10.1f %14.1f %12.1f" % (p, c * 1e6, "*" if extrapolated else "", fill_h,

@@ -2,6 +2,7 @@
 against a hand computation on synthetic logs; missing or truncated logs give a clear message."""
 import importlib.util
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -29,8 +30,22 @@ def test_counts_match_the_decks():
     assert pt.bag_particles(21, 21, 7) == 1282 and pt.sand_grains(21, 21, 7) == 1874
 
 
+def test_timestep_from_the_run_else_the_deck(tmp_path):
+    r = pt.project(make(tmp_path), ranks=1)
+    deck = float(re.search(r"^variable\s+dt\s+index\s+(\S+)", (ROOT / "inputs" / "in.shear").read_text(), re.M).group(1))
+    assert r["dt"] == deck
+    log = tmp_path / "np1" / "log.shear"
+    log.write_text("TIMESTEP: Rayleigh 1.141e-05 s, bond 7.777e-06 s; using 1e-6 s\n" + log.read_text())
+    r = pt.project(tmp_path, ranks=1)
+    assert r["dt"] == 1e-6 and r["shear_steps"] == pytest.approx(0.015 / (0.004 * 1e-6))
+
+
 def test_projection_by_hand(tmp_path):
-    r = pt.project(make(tmp_path), ranks=4)
+    make(tmp_path)
+    for p in (1, 2):
+        log = tmp_path / ("np%d" % p) / "log.shear"
+        log.write_text("TIMESTEP: Rayleigh 1.1e-05 s, bond 7.8e-06 s; using 2e-6 s\n" + log.read_text())
+    r = pt.project(tmp_path, ranks=4)
     atoms = 17922 + 97130
     assert r["atoms"] == atoms and r["fill_steps"] == 60000 and r["comp_steps"] == 39000
     steps_load = 39000 * 15 / 5 + 0.015 / (0.004 * 2e-6)
