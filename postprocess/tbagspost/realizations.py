@@ -3,7 +3,8 @@ spread. A filled bag is one random packing; one run is one sample.
 
 For each group of realizations (one load): the mean S-u and w-u curves on a common u grid with
 +-1 standard deviation and the min-max envelope over the realizations, and per realization the
-figures a paper reports: peak S and its u, S at u = 5 mm (where T-BAGS works), the contraction
+figures a paper reports: peak S and its u, S at u = 5 mm (where T-BAGS works; the row whose
+0.1 mm holds it), S and u of the last row, the contraction
 (w at the start of shearing minus the lowest w) and the dilatancy (w at the end minus the lowest
 w), with their mean, standard deviation (n - 1) and range.
 Writes into OUTDIR: realizations.csv (one row per run), realizations.md (the table with the
@@ -23,6 +24,8 @@ METRICS = OrderedDict([
     ("S_5mm_N", "S at u = 5 mm (N)"),
     ("contraction_mm", "contraction (mm)"),
     ("dilatancy_mm", "dilatancy (mm)"),
+    ("S_end_N", "S at the end (N)"),
+    ("u_end_mm", "u at the end (mm)"),
     ("Fv_N", "F_v, mean while shearing (N)"),
 ])
 
@@ -40,6 +43,8 @@ def metrics(d):
         ("S_5mm_N", float(np.interp(U_DESIGN, u, S)) if u[-1] + 0.5 * du >= U_DESIGN - 1e-2 else float("nan")),
         ("contraction_mm", float(-w[kmin])),
         ("dilatancy_mm", float(w[-1] - w[kmin])),
+        ("S_end_N", float(S[-1])),
+        ("u_end_mm", float(u[-1])),
         ("Fv_N", float(np.mean(d["Fv_N"][1:]))),
     ])
 

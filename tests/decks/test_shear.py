@@ -38,7 +38,8 @@ def test_protocol_on_a_tiny_bag(filled):
 
 @pytest.mark.parametrize("var,message", [({"nx": 2}, "nx, ny, nz must be at least 3"),
                                          ({"Fv": -5}, "Fv must be > 0"),
-                                         ({"ufinal": 0}, "v and ufinal must be > 0")])
+                                         ({"ufinal": 0}, "v and ufinal must be > 0"),
+                                         ({"du_dump": 5e-5}, "du_dump >= du_csv")])
 def test_bad_variables(tmp_path, var, message):
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, **var))
     assert res.returncode != 0 and message in res.output
