@@ -10,6 +10,7 @@ w), with their mean, standard deviation (n - 1) and range.
 Writes into OUTDIR: realizations.csv (one row per run), realizations.md (the table with the
 spread), curves_<group>.csv (u_mm, S and w: mean, std, min, max, n) and realizations.png.
 """
+import os
 from collections import OrderedDict
 from pathlib import Path
 
@@ -107,16 +108,17 @@ def table_md(groups, rows):
 def figure(curves):
     """Mean S-u and w-u with +-1 std (shaded) and the min-max envelope (thin) per group."""
     fig, (a_s, a_w) = style.figure(1, 2, width=7.0, height=2.8)
-    for g, c in curves.items():
+    cycle = style.PAPER["axes.prop_cycle"].by_key()
+    for k, (g, c) in enumerate(curves.items()):
         u = c["u_mm"]
-        line, = a_s.plot(u, c["S_N_mean"] / 1000, label="%s (n = %d)" % (g, c["n"]))
-        col = line.get_color()
-        a_w.plot(u, c["w_mm_mean"], color=col, linestyle=line.get_linestyle())
+        col, ls = cycle["color"][k % len(cycle["color"])], cycle["linestyle"][k % len(cycle["linestyle"])]
+        a_s.plot(u, c["S_N_mean"] / 1000, color=col, linestyle=ls, label="%s (n = %d)" % (g, c["n"]))
+        a_w.plot(u, c["w_mm_mean"], color=col, linestyle=ls)
         for ax, key, scale in ((a_s, "S_N", 1000.0), (a_w, "w_mm", 1.0)):
             ax.fill_between(u, (c[key + "_mean"] - c[key + "_std"]) / scale,
                             (c[key + "_mean"] + c[key + "_std"]) / scale, color=col, alpha=0.2, lw=0)
-            ax.plot(u, c[key + "_min"] / scale, color=col, lw=0.5, alpha=0.6)
-            ax.plot(u, c[key + "_max"] / scale, color=col, lw=0.5, alpha=0.6)
+            for env in ("_min", "_max"):
+                ax.plot(u, c[key + env] / scale, color=col, linestyle="-", lw=0.5, alpha=0.6)
     a_s.set_xlabel("horizontal displacement $u$ (mm)")
     a_s.set_ylabel("shear force $S$ (kN)")
     a_w.set_xlabel("horizontal displacement $u$ (mm)")
@@ -142,7 +144,8 @@ def write(runs, outdir):
     for g, members in groups.items():
         for r in members:
             rows.append(OrderedDict([("group", g), ("realization", realization_name(r)),
-                                     ("run", str(r.path))] + list(metrics(r.csv).items())))
+                                     ("run", os.path.relpath(r.path.resolve(), outdir.resolve().parent)),
+                                     ] + list(metrics(r.csv).items())))
         c = mean_curves([r.csv for r in members])
         c["n"] = len(members)
         curves[g] = c
