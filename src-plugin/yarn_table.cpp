@@ -139,6 +139,8 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
     } else if (!axial_only && kw == "shear") {
       need(1);
       kappa = num(1);
+      if (kappa < 0.0)
+        error->all(FLERR, "{}: shear coefficient must be >= 0 (0: no shear spring), got {}", style, kappa);
       iarg += 2;
     } else {
       error->all(FLERR, "{}: unknown bond_coeff keyword '{}'", style, kw);
@@ -160,7 +162,6 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
     if (E < 0.0) E = E0;
     if (E <= 0.0) error->all(FLERR, "{}: E must be > 0 Pa", style);
     if (kappa < 0.0) kappa = 6.0 * (1.0 + nu) / (7.0 + 6.0 * nu);    // circular section
-    if (kappa <= 0.0) error->all(FLERR, "{}: shear coefficient must be > 0", style);
     c.p.E = E;
     c.p.nu = nu;
     c.p.kappa = kappa;

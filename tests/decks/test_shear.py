@@ -112,3 +112,20 @@ def test_csv_rows_are_interval_means(filled, tmp_path):
     # the means differ from the interval's last step, as they should for a varying force
     last = np.array([tr["S_N"][tr["step"] == s0 + k * n][0] for k in range(1, len(rows))])
     assert np.abs(rows["S_N"][1:] - last).max() > 1e-3
+
+
+def test_yarn_shear_spring_is_a_choice(filled, tmp_path):
+    """-var yarn_shear 0 drops the yarn bonds' shear spring (bonds then resist tension, bending and
+    twisting only): on this bag the walls' shear springs carry most of S, so S falls sharply."""
+    import shutil
+    S = {}
+    for k in (-1, 0):
+        wd = tmp_path / str(k)
+        wd.mkdir()
+        shutil.copy(filled / "fill.data", wd)
+        lmprun.run(INPUTS / "in.shear", wd, variables=dict(SIZE, v=0.02, ufinal=0.0006, yarn_shear=k)).check()
+        log = (wd / "log.lammps").read_text()
+        assert ("shear" in [l for l in log.splitlines() if l.strip().startswith("bond_coeff 1 table")][-1]) == (k == 0)
+        S[k] = np.genfromtxt(wd / "shear.csv", delimiter=",", names=True)["S_N"][-1]
+    print("S at 0.55 mm: %.2f N with the shear spring, %.2f N without" % (S[-1], S[0]))
+    assert S[0] < 0.5 * S[-1]
