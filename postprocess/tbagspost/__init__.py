@@ -10,6 +10,7 @@ Modules, one job each:
   shape     deformed shape of the bag (side view and two central cross-sections)
   network   contact-force network and bond tension in the central cross-section
   triax     triaxial runs (calibration/in.triax): stress ratio and volumetric strain
+  loadpath  what carries the load: forces the contacts pass across the bag's mid-height
   realizations  several realizations of one test: mean curves, spread of the reported figures
   vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
   cli       the command line (python3 -m tbagspost --help)

@@ -7,7 +7,7 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import fail, network, realizations, shape, shear, style, triax, vtkout
+from tbagspost import fail, loadpath, network, realizations, shape, shear, style, triax, vtkout
 from tbagspost.run import Run
 
 DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
@@ -106,6 +106,9 @@ def process(run, args, several):
             fig, st = module.figure(run, step, half)
             written += style.save(fig, out / ("%s_u%.1fmm" % (name, st["u_mm"])), args.format, args.dpi)
             lines.append("%s: %s" % (name, module.describe(st)))
+            if name == "network":
+                r = loadpath.through_plane(run.grains(step), run.contacts(step))
+                lines.append("u %.1f mm: %s" % (st["u_mm"], loadpath.describe(r, run.at_step(step, "S_N"))))
     if args.vtk:
         written += vtkout.convert(run, out / "paraview" if args.outdir else None)
     if lines:
