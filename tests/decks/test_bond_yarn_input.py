@@ -74,6 +74,7 @@ BAD = [
     ("table %s YARN_PP_TAPE diameter -0.001 poisson 0.3" % TABLE, "needs 'diameter D' with D > 0"),
     ("table %s YARN_PP_TAPE diameter 0.001" % TABLE, "needs 'poisson NU'"),
     ("table %s YARN_PP_TAPE diameter 0.001 poisson 0.3 break 0.5" % TABLE, "must be in (0, 0.16]"),
+    ("table %s YARN_PP_TAPE diameter 0.001 poisson 0.3 shear -0.5" % TABLE, "shear coefficient must be >= 0"),
     ("table %s YARN_PP_TAPE diameter 0.001 poisson 0.3 colour red" % TABLE, "unknown bond_coeff keyword 'colour'"),
     ("%s YARN_PP_TAPE diameter 0.001 poisson 0.3" % TABLE, "write 'bond_coeff T table FILE KEYWORD"),
     ("table %s YARN_PP_TAPE diameter 0.001 poisson 0.3 unload sometimes" % TABLE, "unload must be elastic or plastic"),
