@@ -99,15 +99,14 @@ def edge_forces(run, band=0.010):
 
 
 def sand_height_mm(run):
-    """(nz - 2) x 5 mm from the 'nz' of the run's log (in.shear echoes its variables)."""
-    log = (Path(run) / "log.shear").read_text(errors="replace")
-    m = re.search(r"^variable\s+nz\s+index\s+(\d+)", log, re.M)
-    nz = int(m.group(1)) if m else 17
-    for line in log.splitlines():     # a -var on the command line wins over the deck's index
-        m2 = re.search(r"-var nz (\d+)", line)
-        if m2:
-            nz = int(m2.group(1))
-    return (nz - 2) * 5.0
+    """(nz - 2) x 5 mm, nz from the 'BAG nx x ny x nz' line of the bag's log (log.bag beside the
+    run or in its parent folder, where ./tbags shear writes it)."""
+    for log in (Path(run) / "log.bag", Path(run).parent / "log.bag"):
+        if log.is_file():
+            m = re.search(r"^BAG \d+ x \d+ x (\d+):", log.read_text(errors="replace"), re.M)
+            if m:
+                return (int(m.group(1)) - 2) * 5.0
+    raise SystemExit("check_trends: no 'BAG nx x ny x nz' line in log.bag beside %s or above it" % run)
 
 
 def check_trends(root):

@@ -56,7 +56,9 @@ def write_dumps(run, gap_mm, edge_force, centre_force):
 
 
 def make_trends(tmp_path, peaks=(900, 700, 400), contraction=(0.3, 0.2, 0.1), dilation=(0.1, 0.2, 0.3),
-                gap_mm=1.0, edge=(5.0, 1.0)):
+                gap_mm=1.0, edge=(5.0, 1.0), nz=17):
+    tmp_path.mkdir(parents=True, exist_ok=True)
+    (tmp_path / "log.bag").write_text("BAG 81 x 81 x %d: 17922 particles, 35840 bonds\n" % nz)
     for f, s, c, dl in zip(ct.LOADS, peaks, contraction, dilation):
         run = tmp_path / ("F%d" % f)
         run.mkdir()
@@ -115,11 +117,21 @@ def test_missing_and_truncated(tmp_path):
 def test_every_realization_is_checked(tmp_path, capsys):
     """A folder of realizations (r1, r2): each is checked, the table lists both, one failing
     realization fails the whole check."""
-    make_trends(tmp_path / "r1" if (tmp_path / "r1").mkdir() is None else None)
-    (tmp_path / "r2").mkdir()
+    make_trends(tmp_path / "r1")
     make_trends(tmp_path / "r2", peaks=(700, 900, 400))
     assert [p.name for p in ct.realizations(tmp_path)] == ["r1", "r2"]
     assert ct.main([str(tmp_path)]) == 1
     out = capsys.readouterr().out
     assert "11 of 12 checks pass in 2 realization(s)" in out
     assert "1. peak S rises with F_v | PASS | FAIL" in out
+
+
+def test_sand_height_from_the_bag_log(tmp_path):
+    """H comes from the bag's own log (a 9-layer bag: 35 mm), so the thresholds scale with it:
+    a 0.05 mm contraction step passes 0.1 % of 35 mm but not of 75 mm."""
+    assert ct.sand_height_mm(make_trends(tmp_path / "a", nz=9) / "F5500") == 35.0
+    kw = dict(contraction=(0.3, 0.25, 0.1))
+    assert failed(ct.check_trends(make_trends(tmp_path / "b", nz=9, **kw))) == []
+    assert failed(ct.check_trends(make_trends(tmp_path / "c", nz=17, **kw))) != []
+    with pytest.raises(SystemExit, match="no 'BAG nx x ny x nz' line"):
+        ct.sand_height_mm(tmp_path / "nowhere" / "F5500")
