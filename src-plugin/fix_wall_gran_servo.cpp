@@ -528,11 +528,10 @@ void FixWallGranServo::restart(char *buf)
 {
   auto *list = (double *) buf;
   // tbags 0.3 on: a NaN marker and the record's length before the values
-  const bool marked = std::isnan(list[0]);
-  if (marked) {
+  if (std::isnan(list[0])) {
     const int n = (int) list[1];
     list += 2;
-    if (n >= 13) {
+    if (n >= NRESTART) {
       servo.filtered = list[11];
       servo.primed = list[12] != 0.0;
     }

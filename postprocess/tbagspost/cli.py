@@ -159,9 +159,8 @@ def main(argv=None):
         for path in style.save(fig, overlay_dir(paths, args) / name, args.format, args.dpi):
             print("wrote %s" % path)
     if args.realizations:
-        out = Path(args.outdir) if args.outdir else overlay_dir(
-            [r.path.resolve().parent if r.name.startswith("F") else r.path for r in shear_runs],
-            args).parent / "realizations"
+        out = Path(args.outdir) if args.outdir else Path(os.path.commonpath(
+            [str(realizations.realization_dir(r).parent) for r in shear_runs])) / "realizations"
         print(realizations.write(shear_runs, out))
         print("wrote %s/realizations.md, .csv, .png and curves_*.csv" % out)
     return 0

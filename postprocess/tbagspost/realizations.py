@@ -86,9 +86,14 @@ def group_runs(runs):
     return groups
 
 
+def realization_dir(run):
+    """The realization's folder: the run's own for a run per realization (r1), else its parent
+    (r1/F5500, a load of a realization)."""
+    return run.path.resolve().parent if run.name.startswith("F") else run.path.resolve()
+
+
 def realization_name(run):
-    """The realization's folder: the run's own for a run per realization (r1), else its parent's."""
-    return run.path.resolve().parent.name if run.name.startswith("F") else run.name
+    return realization_dir(run).name
 
 
 def table_md(groups, rows):

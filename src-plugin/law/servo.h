@@ -50,7 +50,6 @@ struct Controller {
     else integral = trial;
     return v;
   }
-
 };
 
 // Chatter of a force signal: the part that alternates from one step to the next (the signature of
