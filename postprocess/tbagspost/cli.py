@@ -7,7 +7,7 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import fail, loadpath, network, realizations, shape, shear, style, triax, vtkout
+from tbagspost import cyclic, fail, loadpath, network, realizations, shape, shear, style, triax, vtkout
 from tbagspost.run import Run
 
 DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
@@ -27,6 +27,13 @@ particles_<step>.vtu, contacts_<step>.vtp, bonds_<step>.vtp, plates_<step>.vtp a
 particles/contacts/bonds/plates.pvd (time value = u in mm).
 A triaxial RUN_DIR (a CSV with eps_a_pct, ... from in.triax, no shear.csv) gets triax.png:
 sigma1/sigma3 and eps_v against eps_a; several of them also triax-overlay.png.
+Cyclic RUN_DIRs (cyclic.csv from inputs/in.cyclic, e.g. one per load) get, together, in OUTDIR
+(default: RUN_DIR/figures, or the runs' common parent folder/figures for several):
+cyclic-loops.png (every cycle per load and amplitude, with the fitted Ramberg-Osgood/Masing
+loop), cyclic-curves.png (K_eq/K_0 and h_eq against u_a, first and last cycle, with the R-O
+curves), cyclic-settlement.png (w over the cycles), cyclic_table.csv (K_eq, W_d, h_eq per
+cycle), ro_parameters.csv (K_0, S_y, r with their standard deviations and fit errors) and
+report.md (conditions and tables for a design note).
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.
 Shape and network figures are made at the dump nearest to each --u (default: the last dump).
 With --realizations, the RUN_DIRs are realizations of one test (fills of different seeds; runs of
@@ -128,20 +135,23 @@ def process_triax(csv, args, several):
 
 
 def classify(paths, dt):
-    """Shear runs (tbagspost.run.Run) and triaxial CSVs among the run directories."""
-    shear_runs, triax_csvs = [], []
+    """Shear runs (tbagspost.run.Run), triaxial CSVs and cyclic runs among the run directories."""
+    shear_runs, triax_csvs, cyclic_runs = [], [], []
     for p in paths:
+        if (Path(p) / "cyclic.csv").exists() and not (Path(p) / "shear.csv").exists():
+            cyclic_runs.append(cyclic.CyclicRun(p))
+            continue
         csv = None if (Path(p) / "shear.csv").exists() or not Path(p).is_dir() else triax.find_csv(p)
         if csv:
             triax_csvs.append(csv)
         else:
             shear_runs.append(Run(p, dt=dt))
-    return shear_runs, triax_csvs
+    return shear_runs, triax_csvs, cyclic_runs
 
 
 def main(argv=None):
     args = parse(argv)
-    shear_runs, triax_csvs = classify(args.runs, args.dt)
+    shear_runs, triax_csvs, cyclic_runs = classify(args.runs, args.dt)
     several = len(args.runs) > 1
     jobs = [(process, run) for run in shear_runs] + [(process_triax, csv) for csv in triax_csvs]
     for job, item in jobs:
@@ -157,6 +167,13 @@ def main(argv=None):
         overlays.append(("triax-overlay", triax.figure(triax_csvs)[0], [Path(c).parent for c in triax_csvs]))
     for name, fig, paths in overlays:
         for path in style.save(fig, overlay_dir(paths, args) / name, args.format, args.dpi):
+            print("wrote %s" % path)
+    if cyclic_runs:
+        paths = [r.path for r in cyclic_runs]
+        out = overlay_dir(paths, args) if len(paths) > 1 else run_outdir(paths[0], args, False)
+        written, text = cyclic.write(cyclic_runs, out, args.format, args.dpi)
+        print(text)
+        for path in written:
             print("wrote %s" % path)
     if args.realizations:
         out = Path(args.outdir) if args.outdir else Path(os.path.commonpath(

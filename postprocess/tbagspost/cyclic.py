@@ -1,0 +1,311 @@
+"""Cyclic simple shear runs (inputs/in.cyclic): the loops of every cycle, K_eq and h_eq against the
+amplitude, the Ramberg-Osgood fit per load, and a report a designer can paste into a design note.
+
+A run directory holds cyclic.csv (rows of the means over each row's steps, with the amplitude and
+cycle indices) and its log (log.cyclic or screen.cyclic.txt, for the conditions). Rows of an
+interrupted amplitude that a resumed run wrote again are dropped (the later ones are kept).
+The R-O model is fitted to the last cycle of each amplitude (its tips and its loop points; the
+first cycle starts on the virgin backbone, not on a Masing branch). Definitions: hysteresis.py.
+"""
+import csv
+import re
+from pathlib import Path
+
+import numpy as np
+
+from tbagspost import fail, hysteresis, style
+
+COLUMNS = ("time_s", "amp", "cycle", "ua_mm", "u_mm", "w_mm", "S_N", "Fv_N")
+LOG_AMP = re.compile(r"^AMPLITUDE (\d+) of \d+: u_a (\S+) mm, f (\S+) Hz .*peak speed (\S+) mm/s, "
+                     r"inertial number at peak (\S+)", re.M)
+LOG_CYCLIC = re.compile(r"^CYCLIC: (.*)$", re.M)
+LOG_SAND = re.compile(r"^SAND: (.*)$", re.M)
+LOG_DT = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
+
+
+def read_csv(path):
+    """cyclic.csv as a structured array, rows in time order without the rows a resumed run
+    superseded; stops clearly if missing, malformed or empty."""
+    path = Path(path)
+    if not path.is_file():
+        fail("no %s (run inputs/in.cyclic first)" % path)
+    try:
+        d = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True, comments="#"))
+    except ValueError as e:
+        fail("%s is malformed or truncated: %s" % (path, str(e).splitlines()[0]))
+    if d.dtype.names is None or not set(COLUMNS) <= set(d.dtype.names):
+        fail("%s lacks the columns %s" % (path, ", ".join(COLUMNS)))
+    d = d[~np.isnan(d["S_N"])]
+    if len(d) < 2:
+        fail("%s has fewer than two rows (truncated run?)" % path)
+    # a resumed run restarts the time: keep a row only if every later row is later in time
+    later_min = np.minimum.accumulate(d["time_s"][::-1])[::-1]
+    keep = np.append(d["time_s"][:-1] < later_min[1:], True)
+    return d[keep]
+
+
+class CyclicRun:
+    """A cyclic run directory: its rows, cycles and conditions."""
+
+    def __init__(self, path):
+        self.path = Path(path)
+        self.csv = read_csv(self.path / "cyclic.csv")
+        self.log = ""
+        for p in sorted(self.path.glob("log.cyclic")) + sorted(self.path.glob("screen.cyclic*")):
+            self.log = p.read_text(errors="replace")
+            break
+
+    @property
+    def name(self):
+        return self.path.resolve().name
+
+    @property
+    def fv_N(self):
+        return float(np.median(self.csv["Fv_N"]))
+
+    @property
+    def label(self):
+        return "$F_v$ = %.0f N" % self.fv_N
+
+    def rows_per_cycle(self):
+        """The deck's rows per cycle (the most common count of a cycle's rows)."""
+        _, counts = np.unique(self.keys(), axis=0, return_counts=True)
+        return int(np.bincount(counts).argmax())
+
+    def keys(self):
+        return np.stack([self.csv["amp"], self.csv["cycle"]], axis=1).astype(int)
+
+    def cycles(self):
+        """The complete cycles, in order: list of (amp, cycle, rows)."""
+        n = self.rows_per_cycle()
+        keys = self.keys()
+        out = []
+        for amp, cyc in dict.fromkeys(map(tuple, keys)):
+            rows = self.csv[(keys[:, 0] == amp) & (keys[:, 1] == cyc)]
+            if len(rows) == n:
+                out.append((amp, cyc, rows))
+        return out
+
+    def conditions(self):
+        """Per amplitude index: (u_a mm, f Hz, peak speed mm/s, inertial number at peak) from
+        the log; also the CYCLIC, SAND and TIMESTEP lines."""
+        amps = {int(m[0]): tuple(float(x) for x in m[1:]) for m in LOG_AMP.findall(self.log)}
+        get = lambda rx: (rx.search(self.log).group(1) if rx.search(self.log) else "")  # noqa: E731
+        return dict(amps=amps, cyclic=get(LOG_CYCLIC), sand=get(LOG_SAND), dt=get(LOG_DT))
+
+
+def table(run):
+    """One dict per complete cycle: amp, cycle, u_a (nominal and measured), K_eq, W_d, h_eq,
+    S_a, and w at the cycle's end (mm, counted from the start of cycling)."""
+    w0 = run.csv["w_mm"][0]
+    out = []
+    for amp, cyc, rows in run.cycles():
+        m = hysteresis.measure(rows["u_mm"], rows["S_N"])
+        out.append(dict(amp=amp, cycle=cyc, ua_nominal_mm=float(rows["ua_mm"][0]), ua_mm=m.u_a,
+                        S_a_N=m.S_a, K_eq_N_per_mm=m.K_eq, W_d_J=m.W_d / 1000, h_eq=m.h_eq,
+                        Fv_mean_N=float(rows["Fv_N"].mean()),
+                        w_end_mm=float(rows["w_mm"][-1] - w0)))
+    return out
+
+
+def last_cycles(run):
+    """The last complete cycle of each amplitude: {amp: rows}."""
+    last = {}
+    for amp, _, rows in run.cycles():
+        last[amp] = rows
+    return last
+
+
+def fit(run):
+    """The R-O fit (hysteresis.Fit, u in mm and S in N) to the last cycle of each amplitude."""
+    loops = [(r["u_mm"], r["S_N"]) for r in last_cycles(run).values()]
+    if len(loops) < 2:
+        fail("%s: the R-O fit needs at least two amplitudes with a complete cycle" % run.path)
+    return hysteresis.fit(loops)
+
+
+# ---- figures --------------------------------------------------------------------------------
+def loops_figure(runs, fits):
+    """Loops per load (rows) and amplitude (columns): every cycle (the first lighter), and the
+    fitted R-O/Masing loop at the measured amplitude (dashed)."""
+    amps = sorted({a for r in runs for a, _, _ in r.cycles()})
+    fig, axes = style.figure(len(runs), len(amps), width=1.6 * len(amps) + 0.6,
+                             height=1.6 * len(runs) + 0.4, squeeze=False)
+    for i, (run, f) in enumerate(zip(runs, fits)):
+        ncyc = max(c for _, c, _ in run.cycles())
+        for j, amp in enumerate(amps):
+            ax = axes[i][j]
+            last = None
+            for a, c, rows in run.cycles():
+                if a != amp:
+                    continue
+                shade = 0.75 - 0.75 * (c - 1) / max(ncyc - 1, 1)
+                ax.plot(rows["u_mm"], rows["S_N"] / 1000, color=str(shade), ls="-", lw=0.8,
+                        label="cycle %d" % c if (i, j) == (0, 0) else None)
+                last = rows
+            if last is not None:
+                ua = last["ua_mm"][0]
+                S_a = float(f.model.S(hysteresis.measure(last["u_mm"], last["S_N"]).u_a)[0])
+                mu, ms = f.model.loop(S_a)
+                ax.plot(np.append(mu, mu[0]), np.append(ms, ms[0]) / 1000, "--", color="#d62728", lw=1.0,
+                        label="R-O / Masing" if (i, j) == (0, 0) else None)
+                ax.set_title("$u_a$ = %g mm" % ua if i == 0 else "")
+            if j == 0:
+                ax.set_ylabel("%s\n$S$ (kN)" % run.label)
+            if i == len(runs) - 1:
+                ax.set_xlabel("$u$ (mm)")
+    axes[0][0].legend(frameon=False, fontsize=6, loc="upper left")
+    fig.tight_layout()
+    return fig
+
+
+def curves_figure(runs, tables, fits):
+    """K_eq/K_0 and h_eq against u_a: first and last cycle per load, and the R-O curves."""
+    fig, (ak, ah) = style.figure(1, 2, width=7.0, height=2.8)
+    for run, tab, f in zip(runs, tables, fits):
+        first = min(t["cycle"] for t in tab)
+        last = max(t["cycle"] for t in tab)
+        color = None
+        for cyc, mark, ls in ((last, "o", "-"), (first, "s", ":")):
+            rows = [t for t in tab if t["cycle"] == cyc]
+            ua = np.array([t["ua_mm"] for t in rows])
+            line, = ak.plot(ua, [t["K_eq_N_per_mm"] / f.model.K0 for t in rows], marker=mark, ls=ls,
+                            color=color, mfc="none" if cyc == first else None, ms=4,
+                            label="%s, cycle %d" % (run.label, cyc))
+            color = line.get_color()
+            ah.plot(ua, [t["h_eq"] for t in rows], marker=mark, ls=ls, color=color,
+                    mfc="none" if cyc == first else None, ms=4)
+        grid = np.geomspace(min(t["ua_mm"] for t in tab) / 2, max(t["ua_mm"] for t in tab) * 1.2, 60)
+        S = f.model.S(grid)
+        ak.plot(grid, f.model.secant_ratio(S), color=color, lw=0.6, alpha=0.6)
+        ah.plot(grid, f.model.damping(S), color=color, lw=0.6, alpha=0.6)
+    from matplotlib.ticker import ScalarFormatter
+    for ax in (ak, ah):
+        ax.set_xscale("log")
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.xaxis.set_minor_formatter(ScalarFormatter())
+        ax.tick_params(axis="x", which="minor", labelsize=6)
+        ax.set_xlabel("amplitude $u_a$ (mm)")
+    ak.set_ylabel("$K_{eq}/K_0$")
+    ah.set_ylabel("equivalent damping $h_{eq}$")
+    ak.set_ylim(0, 1.05)
+    ah.set_ylim(bottom=0)
+    ak.legend(frameon=False, fontsize=6)
+    style.panel_label(ak, "(a)")
+    style.panel_label(ah, "(b)")
+    fig.tight_layout()
+    return fig
+
+
+def settlement_figure(runs):
+    """w against the cycle count (amplitude steps marked): ratcheting settlement."""
+    fig, ax = style.figure(1, 1, width=7.0, height=2.6)
+    for run in runs:
+        n = run.rows_per_cycle()
+        d = run.csv
+        x = np.zeros(len(d))
+        count, seen = 0, {}
+        for k, key in enumerate(map(tuple, run.keys())):
+            if key not in seen:
+                seen[key] = count
+                count += 1
+            x[k] = seen[key]
+        # position within the cycle: the row's rank in its cycle
+        rank = np.zeros(len(d))
+        for key, start in seen.items():
+            idx = np.flatnonzero((run.keys() == key).all(axis=1))
+            rank[idx] = (np.arange(len(idx)) + 0.5) / n
+        ax.plot(x + rank, d["w_mm"] - d["w_mm"][0], label=run.label)
+    run = runs[0]
+    for amp, cyc, rows in run.cycles():
+        if cyc == 1:
+            k = [i for i, (a, c, _) in enumerate(run.cycles()) if (a, c) == (amp, 1)][0]
+            ax.axvline(k, color="0.7", lw=0.5)
+            ax.text(k + 0.05, 0.02, "%g mm" % rows["ua_mm"][0], transform=ax.get_xaxis_transform(),
+                    fontsize=6, color="0.4")
+    ax.set_xlabel("cycle number (amplitude steps marked)")
+    ax.set_ylabel("vertical displacement $w$ (mm)")
+    ax.legend(frameon=False)
+    fig.tight_layout()
+    return fig
+
+
+# ---- tables and report ----------------------------------------------------------------------
+def fmt_pm(value, sd, digits=3):
+    return "%.*g +- %.2g" % (digits, value, sd)
+
+
+def report(runs, tables, fits):
+    """The Markdown report: conditions, R-O parameters, K_eq and h_eq per load."""
+    cond = runs[0].conditions()
+    lines = ["# Cyclic simple shear: Ramberg-Osgood parameters, stiffness and damping", "",
+             "## Conditions", ""]
+    if cond["cyclic"]:
+        lines.append("- protocol: %s" % cond["cyclic"])
+    if cond["sand"]:
+        lines.append("- sand: %s" % cond["sand"])
+    if cond["dt"]:
+        lines.append("- time step: %s s" % cond["dt"])
+    for k, (ua, f, vp, inert) in sorted(cond["amps"].items()):
+        lines.append("- amplitude %d: u_a %g mm, %.4g Hz, peak plate speed %.3g mm/s, inertial "
+                     "number at peak %.2g (at %.0f N)" % (k, ua, f, vp, inert, runs[0].fv_N))
+    lines += ["", "Definitions (JGS 0542/0543, ASTM D8296): K_eq = (S_max - S_min)/(u_max - u_min); "
+              "W_d = loop area (trapezoid rule, closed loop); W_e = K_eq u_a^2/2; "
+              "h_eq = W_d/(4 pi W_e). R-O backbone u = (S/K_0)(1 + |S/S_y|^(r-1)) (alpha = 1: the "
+              "secant stiffness is K_0/2 at S_y), Masing loops, fitted by least squares to the tips "
+              "and loop points of the last cycle of each amplitude (residuals in u relative to u_a); "
+              "R-O damping h = (2/pi)(r-1)/(r+1)(1 - K_eq/K_0).", "",
+              "## Ramberg-Osgood parameters (+- one standard deviation of the fit)", "",
+              "| F_v (N) | K_0 (N/mm) | S_y (N) | r | rms error at the tips | rms error along the loops |",
+              "|---|---|---|---|---|---|"]
+    for run, f in zip(runs, fits):
+        m, s = f.model, f.sigma
+        lines.append("| %.0f | %s | %s | %s | %.1f %% | %.1f %% |" % (
+            run.fv_N, fmt_pm(m.K0, s.K0), fmt_pm(m.S_y, s.S_y), fmt_pm(m.r, s.r),
+            100 * f.rms_backbone, 100 * f.rms_loops))
+    lines += ["", "## K_eq and h_eq per amplitude (first and last cycle)", "",
+              "| F_v (N) | u_a (mm) | K_eq first (N/mm) | K_eq last (N/mm) | K_eq/K_0 last | "
+              "h_eq first | h_eq last | h R-O | w at the end of the step (mm) |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for run, tab, f in zip(runs, tables, fits):
+        for amp in sorted({t["amp"] for t in tab}):
+            rows = [t for t in tab if t["amp"] == amp]
+            a, b = rows[0], rows[-1]
+            h_ro = float(f.model.damping(f.model.S(b["ua_mm"]))[0])
+            lines.append("| %.0f | %g | %.1f | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f |" % (
+                run.fv_N, b["ua_nominal_mm"], a["K_eq_N_per_mm"], b["K_eq_N_per_mm"],
+                b["K_eq_N_per_mm"] / f.model.K0, a["h_eq"], b["h_eq"], h_ro, b["w_end_mm"]))
+    return "\n".join(lines) + "\n"
+
+
+def write(runs, out, formats=("png",), dpi=None):
+    """Figures, cyclic_table.csv, ro_parameters.csv and report.md into out; returns the written
+    paths and the report."""
+    runs = sorted(runs, key=lambda r: -r.fv_N)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    tables = [table(r) for r in runs]
+    fits = [fit(r) for r in runs]
+    written = []
+    written += style.save(loops_figure(runs, fits), out / "cyclic-loops", formats, dpi)
+    written += style.save(curves_figure(runs, tables, fits), out / "cyclic-curves", formats, dpi)
+    written += style.save(settlement_figure(runs), out / "cyclic-settlement", formats, dpi)
+    with open(out / "cyclic_table.csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        keys = list(tables[0][0].keys())
+        w.writerow(["run", "Fv_N"] + keys)
+        for run, tab in zip(runs, tables):
+            for t in tab:
+                w.writerow([run.name, "%.2f" % run.fv_N] + ["%.6g" % t[k] for k in keys])
+    with open(out / "ro_parameters.csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["run", "Fv_N", "K0_N_per_mm", "K0_sd", "Sy_N", "Sy_sd", "r", "r_sd",
+                    "rms_tips", "rms_loops"])
+        for run, f in zip(runs, fits):
+            m, s = f.model, f.sigma
+            w.writerow([run.name, "%.2f" % run.fv_N] + ["%.6g" % v for v in (
+                m.K0, s.K0, m.S_y, s.S_y, m.r, s.r, f.rms_backbone, f.rms_loops)])
+    text = report(runs, tables, fits)
+    (out / "report.md").write_text(text)
+    written += [out / "cyclic_table.csv", out / "ro_parameters.csv", out / "report.md"]
+    return written, text
