@@ -1,0 +1,97 @@
+"""tbagspost.cyclic on a made-up cyclic.csv of known Masing loops: rows, cycles, a resumed run's
+repeated rows, the table, the R-O fit, the report and the command line."""
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+from tbagspost import cli, cyclic, hysteresis  # noqa: E402
+
+TRUE = hysteresis.RO(K0=180.0, S_y=250.0, r=2.2)      # N/mm, N
+HEADER = ("time_s,amp,cycle,ua_mm,u_mm,w_mm,S_N,Fv_N,broken_bonds,zplate_mm,steps,u_min_mm,"
+          "u_max_mm,w_min_mm,w_max_mm,S_min_N,S_max_N,Fv_min_N,Fv_max_N")
+
+
+def masing_rows(ua, k, cycles=3, n=200, t0=0.0, period=0.1):
+    """Rows of `cycles` Masing cycles of TRUE at amplitude ua (mm), starting at u = 0 upwards."""
+    S_a = float(TRUE.S(ua)[0])
+    rows = []
+    for c in range(1, cycles + 1):
+        th = 2 * np.pi * (np.arange(n) + 0.5) / n
+        u = ua * np.sin(th)
+        S = np.where(np.cos(th) < 0, S_a - 2 * TRUE.S((ua - u) / 2), -S_a + 2 * TRUE.S((u + ua) / 2))
+        for j in range(n):
+            t = t0 + period * (c - 1 + (j + 0.5) / n)
+            w = -0.01 * (c + k)
+            rows.append("%.7f,%d,%d,%g,%.6f,%.5f,%.5f,318.0,0,30,100,%.6f,%.6f,%.5f,%.5f,%.5f,%.5f,317,319"
+                        % (t, k, c, ua, u[j], w, S[j], u[j], u[j], w, w, S[j], S[j]))
+    return rows, t0 + period * cycles
+
+
+def write_run(path, resumed=False):
+    path.mkdir(parents=True, exist_ok=True)
+    lines, t = [HEADER], 0.0
+    for k, ua in enumerate((0.25, 1.0, 3.0), start=1):
+        lines.append("# amplitude %d: u_a %g mm" % (k, ua))
+        rows, t_end = masing_rows(ua, k, t0=t)
+        if resumed and k == 2:
+            # the run stopped in amplitude 2, resumed from the checkpoint after amplitude 1
+            lines += [r.replace(",318.0,", ",999.0,") for r in rows[:150]]
+            lines.append("# amplitude %d: u_a %g mm" % (k, ua))
+        lines += rows
+        t = t_end
+    (path / "cyclic.csv").write_text("\n".join(lines) + "\n")
+    (path / "log.cyclic").write_text(
+        "CYCLIC: 3 amplitudes (0.25 1 3 mm), 3 cycles each, sine, from amplitude 1: 100 steps; "
+        "bag 21 x 21 x 7, mean stress 35 kPa\nSAND: paper parameters\nTIMESTEP: using 1.5e-6 s\n"
+        "AMPLITUDE 1 of 3: u_a 0.25 mm, f 9.55 Hz (period 69800 steps, 200 rows of 349 steps), "
+        "peak speed 15 mm/s, inertial number at peak 8.2e-04\n")
+    return path
+
+
+def test_rows_cycles_and_a_resumed_run(tmp_path):
+    plain = cyclic.CyclicRun(write_run(tmp_path / "a"))
+    resumed = cyclic.CyclicRun(write_run(tmp_path / "b", resumed=True))
+    assert len(resumed.csv) == len(plain.csv) == 3 * 3 * 200
+    assert not (resumed.csv["Fv_N"] == 999.0).any()       # the superseded rows are gone
+    assert plain.rows_per_cycle() == 200
+    assert [(a, c) for a, c, _ in plain.cycles()] == [(a, c) for a in (1, 2, 3) for c in (1, 2, 3)]
+    assert plain.conditions()["amps"][1] == (0.25, 9.55, 15.0, 8.2e-4)
+
+
+def test_table_and_fit_recover_the_model(tmp_path):
+    run = cyclic.CyclicRun(write_run(tmp_path / "a"))
+    tab = cyclic.table(run)
+    assert len(tab) == 9
+    for t in tab:
+        S_a = float(TRUE.S(t["ua_nominal_mm"])[0])
+        assert t["K_eq_N_per_mm"] == pytest.approx(S_a / t["ua_nominal_mm"], rel=2e-3)
+        assert t["h_eq"] == pytest.approx(float(TRUE.damping(S_a)), rel=0.02)
+    f = cyclic.fit(run)
+    assert f.model.K0 == pytest.approx(TRUE.K0, rel=0.01)
+    assert f.model.S_y == pytest.approx(TRUE.S_y, rel=0.01)
+    assert f.model.r == pytest.approx(TRUE.r, rel=0.01)
+
+
+def test_report_and_command_line(tmp_path, capsys):
+    a = write_run(tmp_path / "F5500")
+    b = write_run(tmp_path / "F1960")
+    assert cli.main([str(a), str(b)]) == 0
+    out = tmp_path / "figures"
+    for name in ("cyclic-loops.png", "cyclic-curves.png", "cyclic-settlement.png", "cyclic_table.csv",
+                 "ro_parameters.csv", "report.md"):
+        assert (out / name).is_file(), name
+    report = (out / "report.md").read_text()
+    assert "| 318 | 180 +- " in report and "| 0.25 |" in report and "peak plate speed 15 mm/s" in report
+    p = np.genfromtxt(out / "ro_parameters.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
+    assert np.allclose(p["K0_N_per_mm"], TRUE.K0, rtol=0.01) and np.allclose(p["r"], TRUE.r, rtol=0.01)
+
+
+def test_missing_or_bad_csv(tmp_path):
+    with pytest.raises(SystemExit, match="no .*cyclic.csv"):
+        cyclic.read_csv(tmp_path / "cyclic.csv")
+    (tmp_path / "cyclic.csv").write_text("time_s,u_mm\n1,2\n3,4\n")
+    with pytest.raises(SystemExit, match="lacks the columns"):
+        cyclic.read_csv(tmp_path / "cyclic.csv")
