@@ -1,5 +1,5 @@
-"""tbagspost: figures and ParaView files from T-BAGS shear runs (inputs/in.shear) and
-triaxial runs (calibration/in.triax).
+"""tbagspost: figures and ParaView files from T-BAGS shear runs (inputs/in.shear), cyclic runs
+(inputs/in.cyclic) and triaxial runs (calibration/in.triax).
 
 Modules, one job each:
   dumps     readers of one dump file (grains through MDAnalysis, contacts and bonds), checks
@@ -12,6 +12,8 @@ Modules, one job each:
   triax     triaxial runs (calibration/in.triax): stress ratio and volumetric strain
   loadpath  what carries the load: forces the contacts pass across the bag's mid-height
   realizations  several realizations of one test: mean curves, spread of the reported figures
+  hysteresis  loop measures (K_eq, W_d, h_eq), Ramberg-Osgood and Masing, the fit
+  cyclic    cyclic runs (inputs/in.cyclic): cycles, table, R-O fit per load, figures, report
   vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
   cli       the command line (python3 -m tbagspost --help)
 Every reader stops with a one-line SystemExit message naming the file on a missing, truncated
