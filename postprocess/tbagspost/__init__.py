@@ -25,3 +25,22 @@ __version__ = "1.0"
 def fail(message):
     """Stop with a one-line message (SystemExit): for a user error, not a bug."""
     raise SystemExit("tbagspost: " + message)
+
+
+def read_columns(path, columns, maker):
+    """A CSV with a header line (and '#' comment lines) as a numpy structured array; stops with
+    one line if the file is missing (run `maker` first), malformed or lacks the columns."""
+    from pathlib import Path
+
+    import numpy as np
+
+    path = Path(path)
+    if not path.is_file():
+        fail("no %s (run %s first)" % (path, maker))
+    try:
+        d = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True, comments="#"))
+    except ValueError as e:
+        fail("%s is malformed or truncated: %s" % (path, str(e).splitlines()[0]))
+    if d.dtype.names is None or not set(columns) <= set(d.dtype.names):
+        fail("%s lacks the columns %s" % (path, ", ".join(columns)))
+    return d

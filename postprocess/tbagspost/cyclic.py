@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import fail, hysteresis, style
+from tbagspost import fail, hysteresis, read_columns, style
 
 COLUMNS = ("time_s", "amp", "cycle", "ua_mm", "u_mm", "w_mm", "S_N", "Fv_N")
 LOG_AMP = re.compile(r"^AMPLITUDE (\d+) of \d+: u_a (\S+) mm, f (\S+) Hz .*peak speed (\S+) mm/s, "
@@ -26,15 +26,7 @@ LOG_DT = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
 def read_csv(path):
     """cyclic.csv as a structured array, rows in time order without the rows a resumed run
     superseded; stops clearly if missing, malformed or empty."""
-    path = Path(path)
-    if not path.is_file():
-        fail("no %s (run inputs/in.cyclic first)" % path)
-    try:
-        d = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True, comments="#"))
-    except ValueError as e:
-        fail("%s is malformed or truncated: %s" % (path, str(e).splitlines()[0]))
-    if d.dtype.names is None or not set(COLUMNS) <= set(d.dtype.names):
-        fail("%s lacks the columns %s" % (path, ", ".join(COLUMNS)))
+    d = read_columns(path, COLUMNS, "inputs/in.cyclic")
     d = d[~np.isnan(d["S_N"])]
     if len(d) < 2:
         fail("%s has fewer than two rows (truncated run?)" % path)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import dumps, fail
+from tbagspost import dumps, fail, read_columns
 
 CSV_COLUMNS = ("time_s", "u_mm", "w_mm", "S_N", "Fv_N")
 KINDS = ("grains", "contacts", "bonds")
@@ -21,16 +21,7 @@ DT_LINE = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
 
 def read_csv(path):
     """The shear CSV as a numpy structured array; stops clearly if missing or truncated."""
-    path = Path(path)
-    if not path.is_file():
-        fail("no %s (run inputs/in.shear first)" % path)
-    try:
-        data = np.genfromtxt(path, delimiter=",", names=True, comments="#")
-    except ValueError as e:
-        fail("%s is malformed or truncated: %s" % (path, str(e).splitlines()[0]))
-    if data.dtype.names is None or not set(CSV_COLUMNS) <= set(data.dtype.names):
-        fail("%s lacks the columns %s" % (path, ", ".join(CSV_COLUMNS)))
-    data = np.atleast_1d(data)
+    data = read_columns(path, CSV_COLUMNS, "inputs/in.shear")
     if len(data) < 2:
         fail("%s has fewer than two rows (truncated run?)" % path)
     if np.isnan(data[-1]["S_N"]):

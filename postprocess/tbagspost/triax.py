@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import fail, style
+from tbagspost import fail, read_columns, style
 
 COLUMNS = ("eps_a_pct", "eps_v_pct", "q_Pa", "ratio", "sx_Pa", "sy_Pa")
 
@@ -25,12 +25,7 @@ def find_csv(path):
 
 def read(path):
     """A triaxial CSV as a structured array; stops clearly if it is short or lacks columns."""
-    try:
-        d = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True, comments="#"))
-    except ValueError as e:
-        fail("%s is malformed or truncated: %s" % (path, str(e).splitlines()[0]))
-    if d.dtype.names is None or not set(COLUMNS) <= set(d.dtype.names):
-        fail("%s lacks the columns %s" % (path, ", ".join(COLUMNS)))
+    d = read_columns(path, COLUMNS, "calibration/in.triax")
     if len(d) < 2 or np.isnan(d[-1]["ratio"]):
         fail("%s has fewer than two full rows (truncated run?)" % path)
     return d
