@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pair benchmark: tbags gran/hertz/rolling against stock pair granular (hertz/material, mindlin,
-coeff_restitution, rolling sds) on the same dense polydisperse MODEL.md sand packing, in one
+coeff_restitution, rolling sds) on the same dense polydisperse packing of the model's sand (doc/tbags_model.rst), in one
 invocation, serial and on 2 ranks. Prints ns per contact per step (pair time) and the ratio:
 the two styles alternate --repeat times (the machine's speed drifts between runs) and the median
 of the pairwise ratios is the result.

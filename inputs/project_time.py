@@ -22,7 +22,7 @@ from pathlib import Path
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 SIZE = re.compile(r"BAG (\d+) x (\d+) x (\d+): (\d+) particles")
 
-# the paper's protocol (MODEL.md section 3)
+# the paper's protocol (doc/tbags_model.rst section 4)
 PAPER = dict(nx=81, ny=81, nz=17, loads=(5500, 3730, 1960), v=0.004, ufinal=0.015)
 DT_LINE = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
 DT_DECK = re.compile(r"^variable\s+dt\s+index\s+(\S+)", re.M)

@@ -35,7 +35,7 @@ def test_fill_small_bag(tmp_path):
 
 
 def test_paper_bag_holds_the_papers_count(tmp_path):
-    """81 x 81 x 17: 97,130 grains, 9,713 of each size (MODEL.md section 2), e = 0.68 +/- 0.01."""
+    """81 x 81 x 17: 97,130 grains, 9,713 of each size (doc/tbags_model.rst section 2), e = 0.68 +/- 0.01."""
     lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path).check()
     res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables={
         "tbags": lmprun.ROOT, "plan_only": 1}).check()

@@ -1,6 +1,6 @@
 """Same physics as stock LAMMPS: with rolling off, per-atom forces and torques of our
 gran/hertz/rolling and of stock `pair granular hertz/material ... tangential mindlin ...
-damping coeff_restitution` (mixed pairs written explicitly, DESIGN.md) agree after 100 steps."""
+damping coeff_restitution` (mixed pairs written explicitly, doc/pair_gran_hertz_rolling.rst) agree after 100 steps."""
 import math
 
 import pytest
