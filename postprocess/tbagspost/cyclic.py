@@ -116,6 +116,21 @@ def fit(run):
     return hysteresis.fit(loops)
 
 
+def compare(run_a, run_b):
+    """K_eq and h_eq of the cycles two runs share (e.g. two frequencies): one dict per
+    (amp, cycle) with both values, K_eq's relative and h_eq's absolute difference (b - a)."""
+    tb = {(t["amp"], t["cycle"]): t for t in table(run_b)}
+    out = []
+    for a in table(run_a):
+        b = tb.get((a["amp"], a["cycle"]))
+        if b is None:
+            continue
+        out.append(dict(amp=a["amp"], cycle=a["cycle"], ua_mm=a["ua_nominal_mm"],
+                        K_a=a["K_eq_N_per_mm"], K_b=b["K_eq_N_per_mm"], h_a=a["h_eq"], h_b=b["h_eq"],
+                        dK_rel=b["K_eq_N_per_mm"] / a["K_eq_N_per_mm"] - 1, dh=b["h_eq"] - a["h_eq"]))
+    return out
+
+
 # ---- figures --------------------------------------------------------------------------------
 def loops_figure(runs, fits):
     """Loops per load (rows) and amplitude (columns): every cycle (the first lighter), and the

@@ -95,3 +95,23 @@ def test_missing_or_bad_csv(tmp_path):
     (tmp_path / "cyclic.csv").write_text("time_s,u_mm\n1,2\n3,4\n")
     with pytest.raises(SystemExit, match="lacks the columns"):
         cyclic.read_csv(tmp_path / "cyclic.csv")
+
+
+def test_rate_check(tmp_path, capsys):
+    """inputs/check_cyclic_rate.py: the same loops pass; S 10 % higher fails on K_eq."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "check_cyclic_rate", Path(__file__).resolve().parents[2] / "inputs" / "check_cyclic_rate.py")
+    check = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(check)
+    a = write_run(tmp_path / "fast")
+    b = write_run(tmp_path / "slow")
+    assert check.main([str(a), str(b)]) == 0
+    assert "K_eq 0.0 %" in capsys.readouterr().out
+    d = np.genfromtxt(b / "cyclic.csv", delimiter=",", names=True, comments="#")
+    d["S_N"] *= 1.1
+    with open(b / "cyclic.csv", "w") as fh:
+        fh.write(HEADER + "\n")
+        np.savetxt(fh, d, delimiter=",", fmt="%.7g")
+    assert check.main([str(a), str(b)]) == 1
+    assert "K_eq 10.0 %" in capsys.readouterr().out

@@ -1,0 +1,46 @@
+#!/usr/bin/python3
+"""Quasi-static check of the cyclic test: the same bag cycled at two speeds (e.g. `-var vpeak
+0.015` and `0.0075`, half the frequency at every amplitude) must give the same secant stiffness
+and damping.
+
+usage: /usr/bin/python3 inputs/check_cyclic_rate.py RUN_FAST RUN_SLOW [--tol-k 0.05] [--tol-h 0.02]
+
+For every cycle both runs completed: K_eq within TOL_K (relative) and h_eq within TOL_H (absolute)
+of the faster run's. Prints the table; exits 1 if a cycle differs by more.
+"""
+import argparse
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from tbagspost import cyclic  # noqa: E402
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("fast")
+    ap.add_argument("slow")
+    ap.add_argument("--tol-k", type=float, default=0.05, help="relative tolerance on K_eq (0.05)")
+    ap.add_argument("--tol-h", type=float, default=0.02, help="absolute tolerance on h_eq (0.02)")
+    args = ap.parse_args(argv)
+    rows = cyclic.compare(cyclic.CyclicRun(args.fast), cyclic.CyclicRun(args.slow))
+    if not rows:
+        raise SystemExit("check_cyclic_rate: the runs share no complete cycle")
+    print("| u_a (mm) | cycle | K_eq fast (N/mm) | K_eq slow | change | h_eq fast | h_eq slow | change |")
+    print("|---|---|---|---|---|---|---|---|")
+    bad = 0
+    for r in rows:
+        ok = abs(r["dK_rel"]) <= args.tol_k and abs(r["dh"]) <= args.tol_h
+        bad += not ok
+        print("| %g | %d | %.1f | %.1f | %+.1f %% | %.3f | %.3f | %+.3f |%s" % (
+            r["ua_mm"], r["cycle"], r["K_a"], r["K_b"], 100 * r["dK_rel"], r["h_a"], r["h_b"], r["dh"],
+            "" if ok else " FAIL"))
+    worst_k = max(abs(r["dK_rel"]) for r in rows)
+    worst_h = max(abs(r["dh"]) for r in rows)
+    print("largest change: K_eq %.1f %% (tolerance %.0f %%), h_eq %.3f (tolerance %.3f) over %d cycles"
+          % (100 * worst_k, 100 * args.tol_k, worst_h, args.tol_h, len(rows)))
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
