@@ -38,7 +38,10 @@ class Run:
             fail("no run directory %s" % self.path)
         self._dt = dt
         self._csv = None
-        self._grains = {}   # the last grains dump read (figures and VTK of one step share it)
+        # the last grains and contacts dumps read (the figures, load path and VTK of one step
+        # share them)
+        self._grains = {}
+        self._contacts = {}
 
     @property
     def name(self):
@@ -113,7 +116,10 @@ class Run:
         return self._grains[step]
 
     def contacts(self, step):
-        return dumps.read_contacts(self.dump("contacts", step))
+        """Contacts of a dump step (the last one read is kept: treat it as read-only)."""
+        if step not in self._contacts:
+            self._contacts = {step: dumps.read_contacts(self.dump("contacts", step))}
+        return self._contacts[step]
 
     def bonds(self, step):
         return dumps.read_bonds(self.dump("bonds", step))
