@@ -100,6 +100,13 @@ def table(run):
     return out
 
 
+def small_strain_stiffness(tab):
+    """K_0 of the K_eq/K_0 curves: the secant stiffness of the last cycle at the smallest
+    amplitude (measured, as G_0 from the smallest strain level of a cyclic soil test)."""
+    smallest = min(t["ua_nominal_mm"] for t in tab)
+    return [t for t in tab if t["ua_nominal_mm"] == smallest][-1]["K_eq_N_per_mm"]
+
+
 def last_cycles(run):
     """The last complete cycle of each amplitude: {amp: rows}."""
     last = {}
@@ -167,16 +174,18 @@ def loops_figure(runs, fits):
 
 
 def curves_figure(runs, tables, fits):
-    """K_eq/K_0 and h_eq against u_a: first and last cycle per load, and the R-O curves."""
+    """K_eq/K_0 and h_eq against u_a: first and last cycle per load, and the R-O curves (its
+    secant stiffness over the same measured K_0)."""
     fig, (ak, ah) = style.figure(1, 2, width=7.0, height=2.8)
     for run, tab, f in zip(runs, tables, fits):
+        k0 = small_strain_stiffness(tab)
         first = min(t["cycle"] for t in tab)
         last = max(t["cycle"] for t in tab)
         color = None
         for cyc, mark, ls in ((last, "o", "-"), (first, "s", ":")):
             rows = [t for t in tab if t["cycle"] == cyc]
             ua = np.array([t["ua_mm"] for t in rows])
-            line, = ak.plot(ua, [t["K_eq_N_per_mm"] / f.model.K0 for t in rows], marker=mark, ls=ls,
+            line, = ak.plot(ua, [t["K_eq_N_per_mm"] / k0 for t in rows], marker=mark, ls=ls,
                             color=color, mfc="none" if cyc == first else None, ms=4,
                             label="%s, cycle %d" % (run.label, cyc))
             color = line.get_color()
@@ -184,7 +193,7 @@ def curves_figure(runs, tables, fits):
                     mfc="none" if cyc == first else None, ms=4)
         grid = np.geomspace(min(t["ua_mm"] for t in tab) / 2, max(t["ua_mm"] for t in tab) * 1.2, 60)
         S = f.model.S(grid)
-        ak.plot(grid, f.model.secant_ratio(S), color=color, lw=0.6, alpha=0.6)
+        ak.plot(grid, S / grid / k0, color=color, lw=0.6, alpha=0.6)
         ah.plot(grid, f.model.damping(S), color=color, lw=0.6, alpha=0.6)
     from matplotlib.ticker import ScalarFormatter
     for ax in (ak, ah):
@@ -195,7 +204,7 @@ def curves_figure(runs, tables, fits):
         ax.set_xlabel("amplitude $u_a$ (mm)")
     ak.set_ylabel("$K_{eq}/K_0$")
     ah.set_ylabel("equivalent damping $h_{eq}$")
-    ak.set_ylim(0, 1.05)
+    ak.set_ylim(0, 1.15)
     ah.set_ylim(bottom=0)
     ak.legend(frameon=False, fontsize=6)
     style.panel_label(ak, "(a)")
@@ -261,7 +270,9 @@ def report(runs, tables, fits):
               "h_eq = W_d/(4 pi W_e). R-O backbone u = (S/K_0)(1 + |S/S_y|^(r-1)) (alpha = 1: the "
               "secant stiffness is K_0/2 at S_y), Masing loops, fitted by least squares to the tips "
               "and loop points of the last cycle of each amplitude (residuals in u relative to u_a); "
-              "R-O damping h = (2/pi)(r-1)/(r+1)(1 - K_eq/K_0).", "",
+              "R-O damping h = (2/pi)(r-1)/(r+1)(1 - K_eq/K_0). In the table K_0 is measured: "
+              "K_eq of the last cycle at the smallest amplitude (K_0 of the R-O fit is beside it "
+              "in the parameters).", "",
               "## Ramberg-Osgood parameters (+- one standard deviation of the fit)", "",
               "| F_v (N) | K_0 (N/mm) | S_y (N) | r | rms error at the tips | rms error along the loops |",
               "|---|---|---|---|---|---|"]
@@ -271,17 +282,18 @@ def report(runs, tables, fits):
             run.fv_N, fmt_pm(m.K0, s.K0), fmt_pm(m.S_y, s.S_y), fmt_pm(m.r, s.r),
             100 * f.rms_backbone, 100 * f.rms_loops))
     lines += ["", "## K_eq and h_eq per amplitude (first and last cycle)", "",
-              "| F_v (N) | u_a (mm) | K_eq first (N/mm) | K_eq last (N/mm) | K_eq/K_0 last | "
+              "| F_v (N) | u_a (mm) | K_eq first (N/mm) | K_eq last (N/mm) | K_eq/K_0 last (measured K_0) | "
               "h_eq first | h_eq last | h R-O | w at the end of the step (mm) |",
               "|---|---|---|---|---|---|---|---|---|"]
     for run, tab, f in zip(runs, tables, fits):
+        k0 = small_strain_stiffness(tab)
         for amp in sorted({t["amp"] for t in tab}):
             rows = [t for t in tab if t["amp"] == amp]
             a, b = rows[0], rows[-1]
             h_ro = float(f.model.damping(f.model.S(b["ua_mm"]))[0])
             lines.append("| %.0f | %g | %.1f | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f |" % (
                 run.fv_N, b["ua_nominal_mm"], a["K_eq_N_per_mm"], b["K_eq_N_per_mm"],
-                b["K_eq_N_per_mm"] / f.model.K0, a["h_eq"], b["h_eq"], h_ro, b["w_end_mm"]))
+                b["K_eq_N_per_mm"] / k0, a["h_eq"], b["h_eq"], h_ro, b["w_end_mm"]))
     return "\n".join(lines) + "\n"
 
 

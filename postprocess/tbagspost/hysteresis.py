@@ -124,7 +124,10 @@ def fit(loops, tips=None, guess=None):
     """Least-squares R-O fit to loops (a list of (u, S) arrays, one closed cycle each) and their
     tips (default: each loop's (u_a, S_a)). The residuals are in u, relative to each loop's u_a so
     that every amplitude weighs alike: at the tips u_bb(S_a) - u_a, along the loops the Masing
-    branch's u at the point's S minus its u. Parameters fitted in logs (K0, S_y > 0, r > 1)."""
+    branch's u at the point's S minus its u, divided by sqrt(points of the loop) so that a whole
+    loop weighs as much as one tip (the backbone and the loops count alike, whatever the rows per
+    cycle). Parameters fitted in logs (K0, S_y > 0, r > 1). The rms errors reported are plain
+    (unweighted) means over the tips and over the loops' points."""
     from scipy.optimize import least_squares
 
     loops = [(np.asarray(u, float), np.asarray(S, float)) for u, S in loops]
@@ -145,7 +148,7 @@ def fit(loops, tips=None, guess=None):
         ro = params(x)
         res = [(ro.u(tips[:, 1]) - ua) / ua]
         for u, S, u_r, S_r, a in prepared:
-            res.append((ro.branch_u(S, u_r, S_r) - u) / a)
+            res.append((ro.branch_u(S, u_r, S_r) - u) / (a * np.sqrt(len(u))))
         return np.concatenate(res)
 
     if guess is None:
@@ -164,6 +167,7 @@ def fit(loops, tips=None, guess=None):
         sd = np.full(3, np.nan)
     sigma = RO(K0=ro.K0 * sd[0], S_y=ro.S_y * sd[1], r=(ro.r - 1) * sd[2])
     nb = len(tips)
+    loop_err = np.concatenate([(ro.branch_u(S, u_r, S_r) - u) / a for u, S, u_r, S_r, a in prepared])
     return Fit(model=ro, sigma=sigma, rms_backbone=float(np.sqrt(np.mean(sol.fun[:nb] ** 2))),
-               rms_loops=float(np.sqrt(np.mean(sol.fun[nb:] ** 2))) if m > nb else float("nan"),
+               rms_loops=float(np.sqrt(np.mean(loop_err ** 2))) if len(loop_err) else float("nan"),
                n_points=m)
