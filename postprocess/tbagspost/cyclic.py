@@ -139,6 +139,23 @@ def compare(run_a, run_b):
 
 
 # ---- figures --------------------------------------------------------------------------------
+def load_color(i):
+    """The colour of the i-th load (the same in every figure)."""
+    import matplotlib.pyplot as plt
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    return colors[i % len(colors)]
+
+
+def amplitude_axis(ax, amps):
+    """A log axis of the amplitudes, labelled at the amplitudes themselves."""
+    from matplotlib.ticker import NullFormatter
+    ax.set_xscale("log")
+    ax.set_xticks(amps)
+    ax.set_xticklabels(["%g" % a for a in amps])
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("amplitude $u_a$ (mm)")
+
+
 def loops_figure(runs, fits):
     """Loops per load (rows) and amplitude (columns): every cycle (the first lighter), and the
     fitted R-O/Masing loop at the measured amplitude (dashed)."""
@@ -177,31 +194,26 @@ def curves_figure(runs, tables, fits):
     """K_eq/K_0 and h_eq against u_a: first and last cycle per load, and the R-O curves (its
     secant stiffness over the same measured K_0)."""
     fig, (ak, ah) = style.figure(1, 2, width=7.0, height=2.8)
-    for run, tab, f in zip(runs, tables, fits):
+    for i, (run, tab, f) in enumerate(zip(runs, tables, fits)):
         k0 = small_strain_stiffness(tab)
         first = min(t["cycle"] for t in tab)
         last = max(t["cycle"] for t in tab)
-        color = None
+        color = load_color(i)
         for cyc, mark, ls in ((last, "o", "-"), (first, "s", ":")):
             rows = [t for t in tab if t["cycle"] == cyc]
             ua = np.array([t["ua_mm"] for t in rows])
-            line, = ak.plot(ua, [t["K_eq_N_per_mm"] / k0 for t in rows], marker=mark, ls=ls,
-                            color=color, mfc="none" if cyc == first else None, ms=4,
-                            label="%s, cycle %d" % (run.label, cyc))
-            color = line.get_color()
+            ak.plot(ua, [t["K_eq_N_per_mm"] / k0 for t in rows], marker=mark, ls=ls,
+                    color=color, mfc="none" if cyc == first else None, ms=4,
+                    label="%s, cycle %d" % (run.label, cyc))
             ah.plot(ua, [t["h_eq"] for t in rows], marker=mark, ls=ls, color=color,
                     mfc="none" if cyc == first else None, ms=4)
         grid = np.geomspace(min(t["ua_mm"] for t in tab) / 2, max(t["ua_mm"] for t in tab) * 1.2, 60)
         S = f.model.S(grid)
-        ak.plot(grid, S / grid / k0, color=color, lw=0.6, alpha=0.6)
-        ah.plot(grid, f.model.damping(S), color=color, lw=0.6, alpha=0.6)
-    from matplotlib.ticker import ScalarFormatter
+        ak.plot(grid, S / grid / k0, color=color, ls="-", lw=0.6, alpha=0.6)
+        ah.plot(grid, f.model.damping(S), color=color, ls="-", lw=0.6, alpha=0.6)
+    amps = sorted({t["ua_nominal_mm"] for tab in tables for t in tab})
     for ax in (ak, ah):
-        ax.set_xscale("log")
-        ax.xaxis.set_major_formatter(ScalarFormatter())
-        ax.xaxis.set_minor_formatter(ScalarFormatter())
-        ax.tick_params(axis="x", which="minor", labelsize=6)
-        ax.set_xlabel("amplitude $u_a$ (mm)")
+        amplitude_axis(ax, amps)
     ak.set_ylabel("$K_{eq}/K_0$")
     ah.set_ylabel("equivalent damping $h_{eq}$")
     ak.set_ylim(0, 1.15)
@@ -216,7 +228,7 @@ def curves_figure(runs, tables, fits):
 def settlement_figure(runs):
     """w against the cycle count (amplitude steps marked): ratcheting settlement."""
     fig, ax = style.figure(1, 1, width=7.0, height=2.6)
-    for run in runs:
+    for i, run in enumerate(runs):
         n = run.rows_per_cycle()
         d = run.csv
         x = np.zeros(len(d))
@@ -231,7 +243,7 @@ def settlement_figure(runs):
         for key, start in seen.items():
             idx = np.flatnonzero((run.keys() == key).all(axis=1))
             rank[idx] = (np.arange(len(idx)) + 0.5) / n
-        ax.plot(x + rank, d["w_mm"] - d["w_mm"][0], label=run.label)
+        ax.plot(x + rank, d["w_mm"] - d["w_mm"][0], label=run.label, color=load_color(i), ls="-")
     run = runs[0]
     for amp, cyc, rows in run.cycles():
         if cyc == 1:
