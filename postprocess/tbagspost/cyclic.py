@@ -42,6 +42,7 @@ class CyclicRun:
     def __init__(self, path):
         self.path = Path(path)
         self.csv = read_csv(self.path / "cyclic.csv")
+        self._cycles = None
         self.log = ""
         for p in sorted(self.path.glob("log.cyclic")) + sorted(self.path.glob("screen.cyclic*")):
             self.log = p.read_text(errors="replace")
@@ -68,15 +69,17 @@ class CyclicRun:
         return np.stack([self.csv["amp"], self.csv["cycle"]], axis=1).astype(int)
 
     def cycles(self):
-        """The complete cycles, in order: list of (amp, cycle, rows)."""
-        n = self.rows_per_cycle()
-        keys = self.keys()
-        out = []
-        for amp, cyc in dict.fromkeys(map(tuple, keys)):
-            rows = self.csv[(keys[:, 0] == amp) & (keys[:, 1] == cyc)]
-            if len(rows) == n:
-                out.append((amp, cyc, rows))
-        return out
+        """The complete cycles, in order: list of (amp, cycle, rows) (found once; the figures
+        and tables ask for them many times)."""
+        if self._cycles is None:
+            n = self.rows_per_cycle()
+            keys = self.keys()
+            self._cycles = []
+            for amp, cyc in dict.fromkeys(map(tuple, keys)):
+                rows = self.csv[(keys[:, 0] == amp) & (keys[:, 1] == cyc)]
+                if len(rows) == n:
+                    self._cycles.append((amp, cyc, rows))
+        return self._cycles
 
     def conditions(self):
         """Per amplitude index: (u_a mm, f Hz, peak speed mm/s, inertial number at peak) from
@@ -225,31 +228,32 @@ def curves_figure(runs, tables, fits):
     return fig
 
 
+def cycle_position(run):
+    """Each row's position in cycles from the start of cycling: the index of its (amp, cycle) in
+    order of appearance plus its place within the cycle; and the (amp, cycle) keys in that order."""
+    n = run.rows_per_cycle()
+    order, first = {}, {}
+    x = np.zeros(len(run.csv))
+    for k, key in enumerate(map(tuple, run.keys())):
+        if key not in order:
+            order[key], first[key] = len(order), k
+        x[k] = order[key] + (k - first[key] + 0.5) / n
+    return x, list(order)
+
+
 def settlement_figure(runs):
     """w against the cycle count (amplitude steps marked): ratcheting settlement."""
     fig, ax = style.figure(1, 1, width=7.0, height=2.6)
     for i, run in enumerate(runs):
-        n = run.rows_per_cycle()
+        x, _ = cycle_position(run)
         d = run.csv
-        x = np.zeros(len(d))
-        count, seen = 0, {}
-        for k, key in enumerate(map(tuple, run.keys())):
-            if key not in seen:
-                seen[key] = count
-                count += 1
-            x[k] = seen[key]
-        # position within the cycle: the row's rank in its cycle
-        rank = np.zeros(len(d))
-        for key, start in seen.items():
-            idx = np.flatnonzero((run.keys() == key).all(axis=1))
-            rank[idx] = (np.arange(len(idx)) + 0.5) / n
-        ax.plot(x + rank, d["w_mm"] - d["w_mm"][0], label=run.label, color=load_color(i), ls="-")
-    run = runs[0]
-    for amp, cyc, rows in run.cycles():
+        ax.plot(x, d["w_mm"] - d["w_mm"][0], label=run.label, color=load_color(i), ls="-")
+    _, keys = cycle_position(runs[0])
+    ua = dict(zip(map(int, runs[0].csv["amp"]), runs[0].csv["ua_mm"]))
+    for k, (amp, cyc) in enumerate(keys):
         if cyc == 1:
-            k = [i for i, (a, c, _) in enumerate(run.cycles()) if (a, c) == (amp, 1)][0]
             ax.axvline(k, color="0.7", lw=0.5)
-            ax.text(k + 0.05, 0.02, "%g mm" % rows["ua_mm"][0], transform=ax.get_xaxis_transform(),
+            ax.text(k + 0.05, 0.02, "%g mm" % ua[amp], transform=ax.get_xaxis_transform(),
                     fontsize=6, color="0.4")
     ax.set_xlabel("cycle number (amplitude steps marked)")
     ax.set_ylabel("vertical displacement $w$ (mm)")
