@@ -1,7 +1,8 @@
 /* ----------------------------------------------------------------------
    T-BAGS DEM toolkit (tbags plugin for LAMMPS)
    fix wall/gran/servo: rigid plate with a force servo (law/servo.h) in contact with particles
-   through the same contact law as pair gran/hertz/rolling (law/contact_law.h).
+   through the same contact law as pair gran/hertz/rolling (law/contact_law.h); or a film: a
+   two-faced sheet of finite thickness and mass, free to move under the particles' forces.
 ------------------------------------------------------------------------- */
 
 #include "fix_wall_gran_servo.h"
@@ -10,10 +11,12 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "force.h"
 #include "input.h"
 #include "memory.h"
+#include "modify.h"
 #include "update.h"
 #include "variable.h"
 
@@ -25,7 +28,7 @@ using namespace FixConst;
 namespace law = tbags::contact;
 
 static const char *STYLE = "Fix wall/gran/servo";
-static constexpr int NVECTOR = 13;
+static constexpr int NVECTOR = 22;
 // global restart record: a NaN marker, its length, then the values (files of tbags 0.2 and before
 // hold 11 values and no marker)
 static constexpr int NRESTART = 13;
@@ -34,8 +37,14 @@ static constexpr double CHATTER_FRACTION = 0.01;
 
 /* ----------------------------------------------------------------------
    fix ID group wall/gran/servo xplane|yplane|zplane POS SIDE material E nu keyword values ...
-     SIDE = +1 (particles on the + side of the plane) or -1
-     coeff T friction mu rolling mu_r restitution e   (per particle type or range)
+     SIDE = +1 (particles on the + side of the plane), -1, or both (a film: needs 'film')
+     coeff T friction mu rolling mu_r restitution e [face +1|-1]
+                                      (per particle type or range; face: one face of a film)
+     film THICKNESS DENSITY           (m, kg/m3; with SIDE both and bounds: the faces are at
+                                      POS +- THICKNESS/2, the mass is DENSITY x THICKNESS x the
+                                      bounds' area)
+     free x|y|z ...                   (components moved by the particles' forces and gravity:
+                                      film only)
      velocity x|y|z V                 (m/s, number or v_name)
      servo F gains KP KI vmax VMAX [filter TAU]
                                       (normal force target in N, number or v_name; TAU: time
@@ -71,17 +80,23 @@ FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
   const std::string side = arg[5];
   if (side == "+1" || side == "1") sense = 1;
   else if (side == "-1") sense = -1;
+  else if (side == "both") sense = 0;
   else
-    error->all(FLERR, "{}: side must be +1 (particles on the + side) or -1, not '{}'", STYLE, side);
+    error->all(FLERR, "{}: side must be +1 (particles on the + side), -1, or both (a film), not "
+               "'{}'", STYLE, side);
 
   Eplate = nuplate = -1.0;
   bounded = false;
-  tmu.assign(atom->ntypes + 1, -1.0);
-  tmur.assign(atom->ntypes + 1, -1.0);
-  tcor.assign(atom->ntypes + 1, -1.0);
+  half_thick = density = mass = -1.0;
+  gvec = nullptr;
+  for (int face = 0; face < 2; face++) {
+    tmu[face].assign(atom->ntypes + 1, -1.0);
+    tmur[face].assign(atom->ntypes + 1, -1.0);
+    tcor[face].assign(atom->ntypes + 1, -1.0);
+  }
   for (int d = 0; d < 3; d++) {
     mode[d] = FIXED;
-    vset[d] = vplate[d] = disp[d] = fplate[d] = 0.0;
+    vset[d] = vplate[d] = disp[d] = fplate[d] = fface[0][d] = fface[1][d] = 0.0;
     vvar_index[d] = -1;
   }
   target = 0.0;
@@ -115,30 +130,16 @@ FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "{}: plate Poisson's ratio must be in (-1, 0.5) (got {})", STYLE, nuplate);
       iarg += 3;
     } else if (kw == "coeff") {
-      need(7);
-      int lo, hi;
-      utils::bounds(FLERR, arg[iarg + 1], 1, atom->ntypes, lo, hi, error);
-      double mu = -1, mur = -1, e = -1;
-      for (int k = iarg + 2; k < iarg + 8; k += 2) {
-        const std::string name = arg[k];
-        const double val = utils::numeric(FLERR, arg[k + 1], false, lmp);
-        if (name == "friction") mu = val;
-        else if (name == "rolling") mur = val;
-        else if (name == "restitution") e = val;
-        else
-          error->all(FLERR, "{}: coeff takes friction, rolling and restitution, not '{}'", STYLE, name);
-      }
-      if (mu < 0.0) error->all(FLERR, "{}: coeff {}: friction must be given and >= 0", STYLE, arg[iarg + 1]);
-      if (mur < 0.0) error->all(FLERR, "{}: coeff {}: rolling must be given and >= 0", STYLE, arg[iarg + 1]);
-      if (e <= 0.0 || e > 1.0)
-        error->all(FLERR, "{}: coeff {}: restitution must be in (0, 1]", STYLE, arg[iarg + 1]);
-      for (int t = lo; t <= hi; t++) {
-        tmu[t] = mu;
-        tmur[t] = mur;
-        tcor[t] = e;
-      }
-      iarg += 8;
-    } else if (kw == "velocity" || kw == "servo") {
+      parse_coeff(narg, arg, iarg);
+    } else if (kw == "film") {
+      need(2);
+      half_thick = 0.5 * utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      density = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (half_thick <= 0.0 || density <= 0.0)
+        error->all(FLERR, "{}: film needs a thickness > 0 m and a density > 0 kg/m3 (got {} {})",
+                   STYLE, arg[iarg + 1], arg[iarg + 2]);
+      iarg += 3;
+    } else if (kw == "velocity" || kw == "servo" || kw == "free") {
       parse_motion(narg, arg, iarg);
     } else if (kw == "converge") {
       need(2);
@@ -161,11 +162,16 @@ FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
       warn_steps = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
       iarg += 2;
     } else {
-      error->all(FLERR, "{}: unknown keyword '{}'; use material, coeff, velocity, servo, converge, "
-                 "bounds or warn", STYLE, kw);
+      error->all(FLERR, "{}: unknown keyword '{}'; use material, coeff, film, velocity, servo, "
+                 "free, converge, bounds or warn", STYLE, kw);
     }
   }
   if (Eplate < 0.0) error->all(FLERR, "{}: missing 'material E nu' of the plate", STYLE);
+  if (film()) init_film();
+  else if (half_thick > 0.0)
+    error->all(FLERR, "{}: 'film' is for a sheet with particles on both sides: write 'both' as "
+               "the side", STYLE);
+  else half_thick = 0.0;
 
   FixWallGranServo::grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -183,12 +189,90 @@ FixWallGranServo::~FixWallGranServo()
 }
 
 /* ----------------------------------------------------------------------
-   velocity DIM V   |   servo F gains KP KI vmax VMAX   |   servo off
+   a film: its thickness, density and area (the bounds) give its mass; no servo (its normal force
+   is the difference of its faces' forces)
+------------------------------------------------------------------------- */
+
+void FixWallGranServo::init_film()
+{
+  if (half_thick <= 0.0)
+    error->all(FLERR, "{}: a plate with particles on both sides is a film: give its 'film "
+               "THICKNESS DENSITY'", STYLE);
+  if (!bounded)
+    error->all(FLERR, "{}: a film needs 'bounds LO1 HI1 LO2 HI2' (its area gives its mass and "
+               "particles beyond it pass it by)", STYLE);
+  if (mode[axis] == SERVO)
+    error->all(FLERR, "{}: a film has no servo (its normal force is the difference of its two "
+               "faces' forces); use free or velocity", STYLE);
+  mass = density * 2.0 * half_thick * (bhi[0] - blo[0]) * (bhi[1] - blo[1]);
+}
+
+/* ----------------------------------------------------------------------
+   coeff TYPES friction mu rolling mu_r restitution e [face +1|-1]
+------------------------------------------------------------------------- */
+
+void FixWallGranServo::parse_coeff(int narg, char **arg, int &iarg)
+{
+  if (iarg + 7 >= narg)
+    error->all(FLERR, "{}: coeff needs 'TYPES friction mu rolling mu_r restitution e'", STYLE);
+  int lo, hi;
+  utils::bounds(FLERR, arg[iarg + 1], 1, atom->ntypes, lo, hi, error);
+  double mu = -1, mur = -1, e = -1;
+  for (int k = iarg + 2; k < iarg + 8; k += 2) {
+    const std::string name = arg[k];
+    const double val = utils::numeric(FLERR, arg[k + 1], false, lmp);
+    if (name == "friction") mu = val;
+    else if (name == "rolling") mur = val;
+    else if (name == "restitution") e = val;
+    else
+      error->all(FLERR, "{}: coeff takes friction, rolling and restitution, not '{}'", STYLE, name);
+  }
+  if (mu < 0.0) error->all(FLERR, "{}: coeff {}: friction must be given and >= 0", STYLE, arg[iarg + 1]);
+  if (mur < 0.0) error->all(FLERR, "{}: coeff {}: rolling must be given and >= 0", STYLE, arg[iarg + 1]);
+  if (e <= 0.0 || e > 1.0)
+    error->all(FLERR, "{}: coeff {}: restitution must be in (0, 1]", STYLE, arg[iarg + 1]);
+  iarg += 8;
+  int first = 0, last = 1;    // both faces unless one is named
+  if (iarg < narg && strcmp(arg[iarg], "face") == 0) {
+    if (iarg + 1 >= narg) error->all(FLERR, "{}: coeff ... face needs +1 or -1", STYLE);
+    const std::string f = arg[iarg + 1];
+    if (f == "+1" || f == "1") last = 0;
+    else if (f == "-1") first = 1;
+    else error->all(FLERR, "{}: coeff ... face must be +1 or -1, not '{}'", STYLE, f);
+    if (!film())
+      error->all(FLERR, "{}: coeff ... face is for a film (side 'both'); a one-sided plate has "
+                 "one face", STYLE);
+    iarg += 2;
+  }
+  for (int face = first; face <= last; face++)
+    for (int t = lo; t <= hi; t++) {
+      tmu[face][t] = mu;
+      tmur[face][t] = mur;
+      tcor[face][t] = e;
+    }
+}
+
+/* ----------------------------------------------------------------------
+   velocity DIM V   |   servo F gains KP KI vmax VMAX   |   servo off   |   free DIM ...
 ------------------------------------------------------------------------- */
 
 void FixWallGranServo::parse_motion(int narg, char **arg, int &iarg)
 {
   const std::string kw = arg[iarg];
+  if (kw == "free") {
+    if (!film())
+      error->all(FLERR, "{}: free motion needs a mass: it is for a film ('both' as the side, "
+                 "'film THICKNESS DENSITY' and 'bounds')", STYLE);
+    int n = 0;
+    for (iarg++; iarg < narg; iarg++, n++) {
+      const std::string dim = arg[iarg];
+      const int d = dim == "x" ? 0 : dim == "y" ? 1 : dim == "z" ? 2 : -1;
+      if (d < 0) break;
+      mode[d] = FREE;
+    }
+    if (n == 0) error->all(FLERR, "{}: free needs one or more of x, y, z", STYLE);
+    return;
+  }
   if (kw == "velocity") {
     if (iarg + 2 >= narg) error->all(FLERR, "{}: velocity needs a dimension and a value", STYLE);
     const std::string dim = arg[iarg + 1];
@@ -200,6 +284,9 @@ void FixWallGranServo::parse_motion(int narg, char **arg, int &iarg)
   }
   // servo
   if (iarg + 1 >= narg) error->all(FLERR, "{}: servo needs a target force or 'off'", STYLE);
+  if (film())
+    error->all(FLERR, "{}: a film has no servo (its normal force is the difference of its two "
+               "faces' forces); use free or velocity", STYLE);
   if (strcmp(arg[iarg + 1], "off") == 0) {
     mode[axis] = FIXED;
     vplate[axis] = 0.0;
@@ -292,19 +379,43 @@ void FixWallGranServo::init()
     if (atom->mask[i] & groupbit) present[atom->type[i]] = 1;
   MPI_Allreduce(present.data(), all.data(), atom->ntypes + 1, MPI_INT, MPI_MAX, world);
 
-  params.assign(atom->ntypes + 1, law::Params());
-  for (int t = 1; t <= atom->ntypes; t++) {
-    if (tmu[t] < 0.0) {
-      if (all[t])
-        error->all(FLERR, "{}: particles of type {} are in the group but have no plate "
-                   "coefficients; add 'coeff {} friction mu rolling mu_r restitution e'", STYLE, t, t);
-      continue;
+  for (int face = 0; face < 2; face++) {
+    params[face].assign(atom->ntypes + 1, law::Params());
+    if (!has_face(face)) continue;
+    for (int t = 1; t <= atom->ntypes; t++) {
+      if (tmu[face][t] < 0.0) {
+        if (all[t])
+          error->all(FLERR, "{}: particles of type {} are in the group but have no {} "
+                     "coefficients; add 'coeff {} friction mu rolling mu_r restitution e{}'", STYLE,
+                     t, film() ? (face == 0 ? "film (+ face)" : "film (- face)") : "plate", t,
+                     film() ? (face == 0 ? " face +1" : " face -1") : "");
+        continue;
+      }
+      const double E = pair->material_E(t), nu = pair->material_nu(t);
+      if (E <= 0.0)
+        error->all(FLERR, "{}: type {} has no material in pair_style gran/hertz/rolling", STYLE, t);
+      params[face][t] = law::make_params(law::mix_E(E, nu, Eplate, nuplate),
+                                         law::mix_G(E, nu, Eplate, nuplate), tcor[face][t],
+                                         tmu[face][t], tmur[face][t], rolling, limit_damping);
     }
-    const double E = pair->material_E(t), nu = pair->material_nu(t);
-    if (E <= 0.0)
-      error->all(FLERR, "{}: type {} has no material in pair_style gran/hertz/rolling", STYLE, t);
-    params[t] = law::make_params(law::mix_E(E, nu, Eplate, nuplate), law::mix_G(E, nu, Eplate, nuplate),
-                                 tcor[t], tmu[t], tmur[t], rolling, limit_damping);
+  }
+  // a free film feels the deck's gravity (the first fix gravity), as its particles do
+  gvec = nullptr;
+  if (film()) {
+    const double *lo = domain->boxlo, *hi = domain->boxhi;
+    if (pos - half_thick < lo[axis] || pos + half_thick > hi[axis])
+      error->all(FLERR, "{} {}: the film ({} to {} m) is outside the box ({} to {} m along its "
+                 "normal); place it between the particles it separates", STYLE, id,
+                 pos - half_thick, pos + half_thick, lo[axis], hi[axis]);
+
+    auto grav = modify->get_fix_by_style("^gravity");
+    if (!grav.empty()) {
+      int dim = 0;
+      gvec = static_cast<const double *>(grav[0]->extract("gvec", dim));
+    }
+    if (comm->me == 0 && !placed)
+      utils::logmesg(lmp, "{} {}: film of mass {:.6g} kg, {}\n", STYLE, id, mass,
+                     gvec ? "weight from fix " + std::string(grav[0]->id) : std::string("no gravity"));
   }
 
   for (int d = 0; d < 3; d++) {
@@ -340,7 +451,7 @@ void FixWallGranServo::check_placement()
   double worst = 0.0, all = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
-    const double h = sense * (atom->x[i][axis] - pos);
+    const double h = gap(atom->x[i][axis]);
     if (h < atom->radius[i]) worst = MAX(worst, (atom->radius[i] - h) / atom->radius[i]);
   }
   MPI_Allreduce(&worst, &all, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -367,7 +478,8 @@ void FixWallGranServo::post_force(int)
   const int t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
   const double wzero[3] = {0.0, 0.0, 0.0};
 
-  double floc[4] = {0.0, 0.0, 0.0, 0.0};    // force on the plate (3), contacts
+  // force on the plate from the + side (3) and the - side (3), contacts
+  double floc[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   law::Contact c;
   c.wall = true;
   c.radj = 0.0;
@@ -378,7 +490,7 @@ void FixWallGranServo::post_force(int)
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const double h = sense * (x[i][axis] - pos);
+    const double h = gap(x[i][axis]);
     bool touch = h < radius[i];
     if (touch && bounded) {
       const double a = x[i][t1] - disp[t1], b = x[i][t2] - disp[t2];
@@ -389,28 +501,34 @@ void FixWallGranServo::post_force(int)
       continue;
     }
     if (h <= 0.0)
-      error->one(FLERR, "{} {}: particle {} crossed the plate; reduce the timestep or the plate "
-                 "speed (vmax)", STYLE, id, atom->tag[i]);
+      error->one(FLERR, "{} {}: particle {} crossed the {}; reduce the timestep or the plate "
+                 "speed (vmax){}", STYLE, id, atom->tag[i], film() ? "film" : "plate",
+                 film() ? ", or make the film's bounds wider than the particles around it" : "");
+    const int face = face_of(x[i][axis]);
     double dx[3] = {0.0, 0.0, 0.0};
-    dx[axis] = sense * h;
+    dx[axis] = face == 0 ? h : -h;
     c.dx = dx;
     c.rsq = h * h;
     c.radsum = c.reff = c.radi = radius[i];
     c.meff = rmass[i];
     c.vi = v[i];
     c.wi = omega[i];
-    law::compute(params[type[i]], c, history[i], update_hist, o);
+    law::compute(params[face][type[i]], c, history[i], update_hist, o);
     for (int k = 0; k < 3; k++) {
       f[i][k] += o.f[k];
       torque[i][k] += o.ti[k];
-      floc[k] -= o.f[k];
+      floc[3 * face + k] -= o.f[k];
     }
-    floc[3] += 1.0;
+    floc[6] += 1.0;
   }
-  double fall[4];
-  MPI_Allreduce(floc, fall, 4, MPI_DOUBLE, MPI_SUM, world);
-  for (int k = 0; k < 3; k++) fplate[k] = fall[k];
-  ncontact = fall[3];
+  double fall[7];
+  MPI_Allreduce(floc, fall, 7, MPI_DOUBLE, MPI_SUM, world);
+  for (int k = 0; k < 3; k++) {
+    fface[0][k] = fall[k];
+    fface[1][k] = fall[3 + k];
+    fplate[k] = fall[k] + fall[3 + k];
+  }
+  ncontact = fall[6];
 
   if (update_hist) {
     if (ncontact > 0.0) chatter.add(fplate);
@@ -440,6 +558,8 @@ void FixWallGranServo::update_plate()
       vplate[d] = 0.0;
     } else if (mode[d] == VELOCITY) {
       vplate[d] = vvar_index[d] >= 0 ? input->variable->compute_equal(vvar_index[d]) : vset[d];
+    } else if (mode[d] == FREE) {    // m dv/dt = F + m g (symplectic Euler, as the particles')
+      vplate[d] += (fplate[d] / mass + (gvec ? gvec[d] : 0.0)) * dt;
     } else {    // SERVO: inward speed from the force error
       // no contact yet: approach at vmax without integrating (no wind-up across the gap)
       bool sat = true;
@@ -473,11 +593,15 @@ void FixWallGranServo::update_plate()
    1-3 force of the particles on the plate, 4-6 displacement since creation, 7 target,
    8 normal force - target, 9 contacts, 10 converged (1/0), 11 plate position,
    12 the normal force the servo sees (filtered), 13 the part of the force that alternates from
-   step to step (N, averaged over about 1000 steps; near 0 for a stable time step)
+   step to step (N, averaged over about 1000 steps; near 0 for a stable time step),
+   14-16 the force of the particles on the + side, 17-19 of those on the - side (their sum is
+   1-3), 20-22 the plate's velocity for the next step
 ------------------------------------------------------------------------- */
 
 double FixWallGranServo::compute_vector(int n)
 {
+  if (n >= 19) return vplate[n - 19];
+  if (n >= 13) return fface[(n - 13) / 3][(n - 13) % 3];
   if (n < 3) return fplate[n];
   if (n < 6) return disp[n - 3];
   if (n == 6) return target;
@@ -490,12 +614,13 @@ double FixWallGranServo::compute_vector(int n)
 }
 
 /* ----------------------------------------------------------------------
-   fix_modify ID velocity DIM V | servo F [gains KP KI] [vmax V] | servo off
+   fix_modify ID velocity DIM V | servo F [gains KP KI] [vmax V] | servo off | free DIM ...
 ------------------------------------------------------------------------- */
 
 int FixWallGranServo::modify_param(int narg, char **arg)
 {
-  if (strcmp(arg[0], "velocity") != 0 && strcmp(arg[0], "servo") != 0) return 0;
+  if (strcmp(arg[0], "velocity") != 0 && strcmp(arg[0], "servo") != 0 && strcmp(arg[0], "free") != 0)
+    return 0;
   int iarg = 0;
   parse_motion(narg, arg, iarg);
   nconv_count = 0;
@@ -540,7 +665,7 @@ void FixWallGranServo::restart(char *buf)
   pos = list[1];
   for (int d = 0; d < 3; d++) {
     disp[d] = list[2 + d];
-    if (mode[d] == SERVO) vplate[d] = list[5 + d];
+    if (mode[d] == SERVO || mode[d] == FREE) vplate[d] = list[5 + d];
   }
   servo.integral = list[8];
   if (target_var.empty() && mode[axis] == SERVO) target = list[9];

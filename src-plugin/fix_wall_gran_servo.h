@@ -1,7 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    T-BAGS DEM toolkit (tbags plugin for LAMMPS)
    fix wall/gran/servo: a rigid plane plate, in contact with particles through
-   law/contact_law.h, moved at prescribed velocities or by a force servo.
+   law/contact_law.h, moved at prescribed velocities, by a force servo, or free under the
+   particles' forces (a film: two faces, a thickness and a mass).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_WALL_GRAN_SERVO_H
@@ -11,6 +12,7 @@
 #include "law/contact_law.h"
 #include "law/servo.h"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -43,7 +45,11 @@ class FixWallGranServo : public Fix {
 
  protected:
   int axis;              // 0,1,2: plane normal along x, y, z
-  int sense;             // +1: particles on the + side of the plane, -1: on the - side
+  int sense;             // +1: particles on the + side of the plane, -1: on the - side, 0: both
+                         // (a film: two faces, each a half-thickness from the mid-plane)
+  double half_thick;     // film: half its thickness (0 for a one-sided plate)
+  double density, mass;  // film: density (kg/m3) and mass (density x thickness x bounds area)
+  const double *gvec;    // film: acceleration of fix gravity (nullptr: none)
   double pos0, pos;      // plane position at creation and now
   double disp[3];        // plate displacement since creation (u, w)
   double vplate[3];      // plate velocity used this step
@@ -51,16 +57,18 @@ class FixWallGranServo : public Fix {
   bool bounded;
   double blo[2], bhi[2];    // rectangle in the two tangential axes (moves with the plate)
 
-  // per particle type: friction, rolling friction, restitution (-1 = not given)
-  std::vector<double> tmu, tmur, tcor;
-  std::vector<tbags::contact::Params> params;    // per type, built in init()
+  // per face (0: the + side, 1: the - side) and particle type: friction, rolling friction,
+  // restitution (-1 = not given)
+  std::vector<double> tmu[2], tmur[2], tcor[2];
+  std::vector<tbags::contact::Params> params[2];    // per face and type, built in init()
   int rolling;
   bool limit_damping;
   int size_history;
   double **history;
 
-  // motion of each component: FIXED, VELOCITY (number or variable) or SERVO (normal only)
-  enum { FIXED = 0, VELOCITY = 1, SERVO = 2 };
+  // motion of each component: FIXED, VELOCITY (number or variable), SERVO (normal only) or FREE
+  // (a film: accelerated by the particles' forces and gravity)
+  enum { FIXED = 0, VELOCITY = 1, SERVO = 2, FREE = 3 };
   int mode[3];
   double vset[3];
   std::string vvar[3];
@@ -79,10 +87,18 @@ class FixWallGranServo : public Fix {
   bool placed;    // the start-position check ran (first setup after the fix was defined)
 
   double fplate[3];      // force of the particles on the plate (summed over ranks)
+  double fface[2][3];    // the same from the particles on the + side (0) and the - side (1)
   double ncontact;
   double dt;
 
   void parse_motion(int, char **, int &);
+  void parse_coeff(int, char **, int &);
+  bool film() const { return sense == 0; }
+  // a particle centre at c (along the normal) faces face 0 (the + side) or 1, at gap() from it
+  int face_of(double c) const { return sense ? (sense > 0 ? 0 : 1) : (c >= pos ? 0 : 1); }
+  double gap(double c) const { return sense ? sense * (c - pos) : std::fabs(c - pos) - half_thick; }
+  // the faces this plate has: 0 (+ side) and/or 1 (- side)
+  bool has_face(int face) const { return sense == 0 || (face == 0) == (sense > 0); }
   void set_velocity_from(int, char **, int);
   double normal_force() const { return -sense * fplate[axis]; }
   // the normal force the servo acts on: filtered once it has measured (as normal_force() with
@@ -93,6 +109,7 @@ class FixWallGranServo : public Fix {
   }
   void update_plate();
   void check_placement();
+  void init_film();
 };
 
 }    // namespace LAMMPS_NS

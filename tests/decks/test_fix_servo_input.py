@@ -22,6 +22,9 @@ run RUN
 PAIR = ("pair_style gran/hertz/rolling epsd\n"
         "pair_coeff * * material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2")
 PLATE = "fix p all wall/gran/servo zplane 0.0 +1 material 200e9 0.1 coeff * friction 1e10 rolling 0.05 restitution 0.2"
+FILM = ("fix p all wall/gran/servo zplane 0.005 both material 3e9 0.4 film 0.001 950 bounds 0 0.02 0 0.02 "
+        "free x z coeff * friction 0.1 rolling 0 restitution 0.2 face +1 "
+        "coeff * friction 1e10 rolling 0 restitution 0.2 face -1")
 
 
 def deck(fix, pair=PAIR, nrun=0):
@@ -30,6 +33,11 @@ def deck(fix, pair=PAIR, nrun=0):
 
 def test_good_plate_runs(tmp_path):
     lmprun.run(deck(PLATE), tmp_path).check()
+
+
+def test_good_film_runs(tmp_path):
+    res = lmprun.run(deck(FILM, nrun=10), tmp_path).check()
+    assert "film of mass 0.00038 kg, no gravity" in res.output
 
 
 BAD = [
@@ -48,6 +56,21 @@ BAD = [
     (PLATE + " velocity q 0.1", "velocity dimension must be x, y or z"),
     (PLATE.replace("zplane 0.0", "zplane 0.0095"), "the plate starts 0.8 radii inside a particle"),
     (PLATE + " velocity x v_nothing", "velocity variable nothing does not exist"),
+    # films: a sheet with particles on both sides (FILM: the sphere at 10 mm, on its + side)
+    (FILM.replace(" coeff * friction 1e10 rolling 0 restitution 0.2 face -1", ""),
+     "no film (- face) coefficients; add 'coeff 1 friction mu rolling mu_r restitution e face -1'"),
+    (FILM.replace("coeff * friction 0.1", "coeff 2 friction 0.1"), "no film (+ face) coefficients"),
+    (FILM.replace("friction 0.1", "friction -0.1"), "friction must be given and >= 0"),
+    (FILM.replace("zplane 0.005", "zplane 0.04"), "the film (0.0395 to 0.0405 m) is outside the box"),
+    (FILM.replace("film 0.001 950 ", ""), "give its 'film THICKNESS DENSITY'"),
+    (FILM.replace("film 0.001 950", "film 0.001 -950"), "film needs a thickness > 0 m and a density > 0"),
+    (FILM.replace("bounds 0 0.02 0 0.02 ", ""), "a film needs 'bounds"),
+    (FILM + " servo 10 gains 1e-3 0 vmax 0.01", "a film has no servo"),
+    (FILM.replace("face -1", "face 2"), "face must be +1 or -1"),
+    (PLATE + " free x", "free motion needs a mass"),
+    (PLATE + " coeff 1 friction 0.1 rolling 0 restitution 0.2 face +1", "face is for a film"),
+    (PLATE + " film 0.001 950", "'film' is for a sheet with particles on both sides"),
+    (FILM.replace("free x z", "free"), "free needs one or more of x, y, z"),
 ]
 
 
