@@ -344,6 +344,7 @@ void FixWallGranServo::set_velocity_from(int d, char **arg, int iv)
     vvar[d] = arg[iv] + 2;
   } else {
     vvar[d].clear();
+    vvar_index[d] = -1;    // (a variable given before no longer applies)
     vset[d] = utils::numeric(FLERR, arg[iv], false, lmp);
   }
   mode[d] = VELOCITY;

@@ -14,6 +14,7 @@ Modules, one job each:
   realizations  several realizations of one test: mean curves, spread of the reported figures
   hysteresis  loop measures (K_eq, W_d, h_eq), Ramberg-Osgood and Masing, the fit
   cyclic    cyclic runs (inputs/in.cyclic): cycles, table, R-O fit per load, figures, report
+  stack     a stack of bags on films (in.cyclic -var bags N): displacement split, slip fraction
   vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
   cli       the command line (python3 -m tbagspost --help)
 Every reader stops with a one-line SystemExit message naming the file on a missing, truncated

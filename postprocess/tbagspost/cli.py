@@ -7,7 +7,8 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import cyclic, fail, loadpath, network, realizations, shape, shear, style, triax, vtkout
+from tbagspost import (cyclic, fail, loadpath, network, realizations, shape, shear, stack, style, triax,
+                       vtkout)
 from tbagspost.run import Run
 
 DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
@@ -33,7 +34,10 @@ cyclic-loops.png (every cycle per load and amplitude, with the fitted Ramberg-Os
 loop), cyclic-curves.png (K_eq/K_0 and h_eq against u_a, first and last cycle, with the R-O
 curves), cyclic-settlement.png (w over the cycles), cyclic_table.csv (K_eq, W_d, h_eq per
 cycle), ro_parameters.csv (K_0, S_y, r with their standard deviations and fit errors) and
-report.md (conditions and tables for a design note).
+report.md (conditions and tables for a design note). A cyclic RUN_DIR of a stack (stack.txt
+from in.cyclic -var bags N) is among them as one more run, and also gets
+stack-split-<run>.png (slip fraction, the amplitude of each bag's shear and each film's slip,
+the film interfaces' loops), stack_split-<run>.csv and a stack section in report.md.
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.
 Shape and network figures are made at the dump nearest to each --u (default: the last dump).
 With --realizations, the RUN_DIRs are realizations of one test (fills of different seeds; runs of
@@ -139,7 +143,8 @@ def classify(paths, dt):
     shear_runs, triax_csvs, cyclic_runs = [], [], []
     for p in paths:
         if (Path(p) / "cyclic.csv").exists() and not (Path(p) / "shear.csv").exists():
-            cyclic_runs.append(cyclic.CyclicRun(p))
+            kind = stack.StackRun if (Path(p) / "stack.txt").exists() else cyclic.CyclicRun
+            cyclic_runs.append(kind(p))
             continue
         csv = None if (Path(p) / "shear.csv").exists() or not Path(p).is_dir() else triax.find_csv(p)
         if csv:
@@ -172,6 +177,12 @@ def main(argv=None):
         paths = [r.path for r in cyclic_runs]
         out = overlay_dir(paths, args) if len(paths) > 1 else run_outdir(paths[0], args, False)
         written, text = cyclic.write(cyclic_runs, out, args.format, args.dpi)
+        for run in cyclic_runs:
+            if isinstance(run, stack.StackRun):
+                more, section = stack.write(run, out, args.format, args.dpi)
+                written += more
+                text += section
+        (out / "report.md").write_text(text)
         print(text)
         for path in written:
             print("wrote %s" % path)

@@ -60,6 +60,11 @@ class CyclicRun:
     def label(self):
         return "$F_v$ = %.0f N" % self.fv_N
 
+    @property
+    def short(self):
+        """The run in a table's first column."""
+        return "%.0f" % self.fv_N
+
     def rows_per_cycle(self):
         """The deck's rows per cycle (the most common count of a cycle's rows)."""
         _, counts = np.unique(self.keys(), axis=0, return_counts=True)
@@ -294,8 +299,8 @@ def report(runs, tables, fits):
               "|---|---|---|---|---|---|"]
     for run, f in zip(runs, fits):
         m, s = f.model, f.sigma
-        lines.append("| %.0f | %s | %s | %s | %.1f %% | %.1f %% |" % (
-            run.fv_N, fmt_pm(m.K0, s.K0), fmt_pm(m.S_y, s.S_y), fmt_pm(m.r, s.r),
+        lines.append("| %s | %s | %s | %s | %.1f %% | %.1f %% |" % (
+            run.short, fmt_pm(m.K0, s.K0), fmt_pm(m.S_y, s.S_y), fmt_pm(m.r, s.r),
             100 * f.rms_backbone, 100 * f.rms_loops))
     lines += ["", "## K_eq and h_eq per amplitude (first and last cycle)", "",
               "| F_v (N) | u_a (mm) | K_eq first (N/mm) | K_eq last (N/mm) | K_eq/K_0 last (measured K_0) | "
@@ -307,8 +312,8 @@ def report(runs, tables, fits):
             rows = [t for t in tab if t["amp"] == amp]
             a, b = rows[0], rows[-1]
             h_ro = float(f.model.damping(f.model.S(b["ua_mm"]))[0])
-            lines.append("| %.0f | %g | %.1f | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f |" % (
-                run.fv_N, b["ua_nominal_mm"], a["K_eq_N_per_mm"], b["K_eq_N_per_mm"],
+            lines.append("| %s | %g | %.1f | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f |" % (
+                run.short, b["ua_nominal_mm"], a["K_eq_N_per_mm"], b["K_eq_N_per_mm"],
                 b["K_eq_N_per_mm"] / k0, a["h_eq"], b["h_eq"], h_ro, b["w_end_mm"]))
     return "\n".join(lines) + "\n"
 
