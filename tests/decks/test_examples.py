@@ -1,0 +1,25 @@
+"""Every example deck (examples/STYLE/in.*, one or more per style) runs to the end, so the
+examples a user starts from cannot rot; the film example's S/F is its film friction."""
+import re
+
+import pytest
+
+import lmprun
+
+EXAMPLES = sorted((lmprun.ROOT / "examples").glob("*/in.*"))
+
+
+def test_every_style_has_an_example():
+    styles = {p.parent.name for p in EXAMPLES}
+    assert {"pair_gran_hertz_rolling", "bond_bpm_yarn", "fix_wall_gran_servo"} <= styles
+
+
+@pytest.mark.parametrize("deck", EXAMPLES, ids=[p.name for p in EXAMPLES])
+def test_example_runs(tmp_path, deck):
+    res = lmprun.run(deck, tmp_path, variables={"tbags": lmprun.ROOT}).check()
+    assert "Total wall time" in res.output and "ERROR" not in res.output
+    if deck.name.endswith("_film"):
+        m = re.search(r"FILM EXAMPLE: S/F (\S+) \(film friction (\S+)\), film moved (\S+) um", res.output)
+        assert m, res.output[-500:]
+        assert float(m.group(1)) == pytest.approx(float(m.group(2)), rel=0.005)
+        assert abs(float(m.group(3))) < 20    # the film stays with the lower block (elastic give)
