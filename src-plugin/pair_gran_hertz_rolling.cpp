@@ -41,12 +41,11 @@ PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     packx(nullptr), packv(nullptr), npack(0), ncand(0), x0(nullptr), nx0(0), cand_nall(0),
     cand_lastcall(-1), cskin(0.0), cand_lim2(0.0)
 {
-#ifdef TBAGS_HAVE_AVX2_CLONE
-  // TBAGS_NO_AVX2 in the environment: the baseline build (tests check both give the same bits)
-  simd_avx2 = __builtin_cpu_supports("avx2") && !getenv("TBAGS_NO_AVX2");
-#else
+  kernel_choice = KERNEL_AUTO;
   simd_avx2 = false;
-#endif
+  simd_flag = 0;
+  simd_logged = -1;
+  contact_skin = 0.25;
   single_enable = 1;
   no_virial_fdotr_compute = 1;
   centroidstressflag = CENTROID_NOTAVAIL;
@@ -129,11 +128,29 @@ void PairGranHertzRolling::settings(int narg, char **arg)
   else
     error->all(FLERR, "{}: unknown rolling model '{}'; use epsd, cdt or none", STYLE, arg[0]);
   limit_damping = false;
+  kernel_choice = KERNEL_AUTO;
+  contact_skin = 0.25;
   for (int iarg = 1; iarg < narg; iarg++) {
-    if (strcmp(arg[iarg], "limit_damping") == 0) limit_damping = true;
-    else
-      error->all(FLERR, "{}: unknown keyword '{}'; the only option is limit_damping", STYLE,
-                 arg[iarg]);
+    if (strcmp(arg[iarg], "limit_damping") == 0) {
+      limit_damping = true;
+    } else if (strcmp(arg[iarg], "kernel") == 0) {
+      if (iarg + 1 >= narg) error->all(FLERR, "{}: kernel needs auto, avx2 or baseline", STYLE);
+      const std::string k = arg[++iarg];
+      if (k == "auto") kernel_choice = KERNEL_AUTO;
+      else if (k == "avx2") kernel_choice = KERNEL_AVX2;
+      else if (k == "baseline") kernel_choice = KERNEL_BASELINE;
+      else error->all(FLERR, "{}: kernel must be auto, avx2 or baseline, not '{}'", STYLE, k);
+    } else if (strcmp(arg[iarg], "contact_skin") == 0) {
+      if (iarg + 1 >= narg)
+        error->all(FLERR, "{}: contact_skin needs a fraction of the neighbor skin", STYLE);
+      contact_skin = utils::numeric(FLERR, arg[++iarg], false, lmp);
+      if (contact_skin < 0.0)
+        error->all(FLERR, "{}: contact_skin must be a fraction >= 0 of the neighbor skin (got {})",
+                   STYLE, contact_skin);
+    } else {
+      error->all(FLERR, "{}: unknown keyword '{}'; use limit_damping, kernel or contact_skin",
+                 STYLE, arg[iarg]);
+    }
   }
   size_history = law::history_size(rolling);
 }
@@ -268,19 +285,42 @@ void PairGranHertzRolling::init_style()
     onerad[atom->type[i]] = MAX(onerad[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(&onerad[1], &maxrad[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
 
-  // candidate list (see the header): its skin a fraction of the neighbor skin, 1/4 unless
-  // TBAGS_CONTACT_SKIN gives another (0: none, the whole list every step; the results are the
-  // same bits); an atom moving 0.49 cskin forces a rebuild (pairs left out stay 0.02 cskin apart)
-  double frac = 0.25;
-  if (const char *f = getenv("TBAGS_CONTACT_SKIN")) {
-    frac = utils::numeric(FLERR, f, false, lmp);
-    if (frac < 0.0)
-      error->all(FLERR, "{}: TBAGS_CONTACT_SKIN={} must be a fraction >= 0 of the neighbor skin",
-                 STYLE, f);
-  }
-  cskin = frac * neighbor->skin;
+  // candidate list (see the header): its skin a fraction of the neighbor skin (contact_skin,
+  // 1/4 by default; 0: none, the whole list every step; the results are the same bits); an atom
+  // moving 0.49 cskin forces a rebuild (pairs left out stay 0.02 cskin apart)
+  cskin = contact_skin * neighbor->skin;
   cand_lim2 = (0.49 * cskin) * (0.49 * cskin);
   cand_nall = 0;
+
+  choose_kernel();
+}
+
+/* ----------------------------------------------------------------------
+   the build of the batch law that runs (keyword kernel): AVX2 where the plugin has it and the
+   CPU runs it (auto), or as asked; logged whenever it changes
+------------------------------------------------------------------------- */
+
+void PairGranHertzRolling::choose_kernel()
+{
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  const bool have = __builtin_cpu_supports("avx2");
+  const char *why = have ? "" : "this CPU has no AVX2";
+#else
+  const bool have = false;
+  const char *why = "this plugin was built without the AVX2 kernel";
+#endif
+  if (kernel_choice == KERNEL_AVX2 && !have)
+    error->all(FLERR, "{}: kernel avx2 is not available ({}); use kernel auto or baseline", STYLE,
+               why);
+  simd_avx2 = have && kernel_choice != KERNEL_BASELINE;
+  simd_flag = simd_avx2 ? 1 : 0;
+  if (simd_flag != simd_logged && comm->me == 0)
+    utils::logmesg(lmp, "{}: batch kernel {} (kernel {}{}{})\n", STYLE,
+                   simd_avx2 ? "avx2, 4 contacts per vector" : "baseline x86-64, 2 contacts per vector",
+                   kernel_choice == KERNEL_AUTO ? "auto" : kernel_choice == KERNEL_AVX2 ? "avx2" : "baseline",
+                   (!have && kernel_choice == KERNEL_AUTO) ? ": " : "",
+                   (!have && kernel_choice == KERNEL_AUTO) ? why : "");
+  simd_logged = simd_flag;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -1174,6 +1214,8 @@ void PairGranHertzRolling::reset_dt() {}
 
 void *PairGranHertzRolling::extract(const char *str, int &dim)
 {
+  dim = 0;
+  if (strcmp(str, "kernel_avx2") == 0) return (void *) &simd_flag;    // 1: the AVX2 build runs
   dim = 1;
   if (strcmp(str, "E") == 0) return (void *) Emod;
   if (strcmp(str, "nu") == 0) return (void *) poiss;

@@ -126,13 +126,21 @@ class PairGranHertzRolling : public Pair {
   double cand_lim2;               // (cskin/2)^2 less a margin: squared displacement that forces a rebuild
 
   void allocate();
+  void choose_kernel();
   template <bool SB> void eval_rolling(bool update_history);    // eval() for the rolling model
   template <int ROLL, bool UPDATE, bool SB> void eval();
   template <int ROLL, bool UPDATE, bool SB, bool UNI>
   TBAGS_TARGET_AVX2 void eval_avx2(const tbags::contact::Params *puni);
   template <int ROLL, bool UPDATE, bool SB, bool UNI>
   inline void eval_body(const tbags::contact::Params *puni);
-  bool simd_avx2;    // the CPU runs the AVX2 build of the batch law
+  // the batch law's build: keyword 'kernel auto|avx2|baseline'; simd_avx2 is the one init_style
+  // chose (and logged), simd_flag the same as an int for extract("kernel_avx2")
+  enum { KERNEL_AUTO = 0, KERNEL_AVX2 = 1, KERNEL_BASELINE = 2 };
+  int kernel_choice;
+  bool simd_avx2;
+  int simd_flag;
+  int simd_logged;              // the kernel last logged (-1: none yet)
+  double contact_skin;          // keyword 'contact_skin f': candidate skin, fraction of the neighbor skin
   const tbags::contact::Params *uniform_params() const;
   template <int NH, int NEWTON, int EVFLAG>
   __attribute__((noinline, optimize("no-tree-slp-vectorize"))) void batch_scatter(int n);

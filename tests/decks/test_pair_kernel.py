@@ -1,5 +1,6 @@
 """The batched SIMD kernel of pair gran/hertz/rolling: its AVX2 build (picked at run time) and its
-baseline x86-64 build (SSE2, forced with TBAGS_NO_AVX2) give the same bits, pressure included.
+baseline x86-64 build (SSE2, pair_style keyword 'kernel baseline') give the same bits, pressure
+included; each run logs the build that ran, and the tests check that both really ran.
 A dense two-material packing with random velocities: sliding, rolling caps, contacts opening.
 (The kernel against stock pair granular: test_pair_stock.py.)"""
 import pytest
@@ -11,7 +12,7 @@ DECK = lmprun.packing_head("${newton}") + """variable vx atom 0.05*normal(0,1,49
 variable vy atom 0.05*normal(0,1,4930)
 variable vz atom 0.05*normal(0,1,4931)
 velocity all set v_vx v_vy v_vz
-pair_style gran/hertz/rolling ${model}
+pair_style gran/hertz/rolling ${model} ${options}
 pair_coeff 1 1 material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2
 pair_coeff 2 2 material 0.75e9 0.1 friction 0.26 rolling 0.03 restitution 0.3
 pair_coeff 1 2 friction 0.2 rolling 0.04 restitution 0.25
@@ -31,15 +32,30 @@ def data(tmp_path_factory):
     return packing.make(tmp_path_factory.mktemp("packing"))
 
 
-def run(wd, data, model, newton="on"):
-    return lmprun.run(DECK, wd, variables={"data": data, "model": model, "newton": newton}).check()
+def run(wd, data, model, newton="on", options=""):
+    return lmprun.run(DECK, wd, variables={"data": data, "model": model, "newton": newton,
+                                           "options": options}).check()
+
+
+def kernel_of(res):
+    """The batch kernel a run logged: 'avx2' or 'baseline'."""
+    lines = [l for l in res.output.splitlines() if "batch kernel" in l]
+    assert lines, "the pair style did not log its kernel"
+    return lines[0].split("batch kernel ")[1].split(",")[0].split()[0]
+
+
+def require_avx2(res):
+    if kernel_of(res) != "avx2":
+        pytest.skip("the AVX2 kernel did not run (%s): only the baseline was tested"
+                    % [l for l in res.output.splitlines() if "batch kernel" in l][0])
 
 
 @pytest.mark.parametrize("model", ["epsd", "cdt", "none"])
-def test_avx2_and_baseline_builds_agree_bitwise(tmp_path, data, monkeypatch, model):
-    run(tmp_path / "default", data, model)
-    monkeypatch.setenv("TBAGS_NO_AVX2", "1")
-    run(tmp_path / "baseline", data, model)
+def test_avx2_and_baseline_builds_agree_bitwise(tmp_path, data, model):
+    default = run(tmp_path / "default", data, model)
+    require_avx2(default)
+    base = run(tmp_path / "baseline", data, model, options="kernel baseline")
+    assert kernel_of(base) == "baseline"
     for f in ("final.dump", "log.lammps"):
         a = (tmp_path / "default" / f).read_text()
         b = (tmp_path / "baseline" / f).read_text()
@@ -82,8 +98,19 @@ def dump_and_thermo(wd):
     return (wd / "final.dump").read_text(), log
 
 
+def test_kernel_keyword(tmp_path, data):
+    """kernel avx2 runs the AVX2 build or stops with the reason; auto logs what it picked."""
+    auto = run(tmp_path / "auto", data, "epsd")
+    if kernel_of(auto) == "avx2":
+        assert kernel_of(run(tmp_path / "avx2", data, "epsd", options="kernel avx2")) == "avx2"
+    else:
+        r = lmprun.run(DECK, tmp_path / "avx2", variables={"data": data, "model": "epsd", "newton": "on",
+                                                             "options": "kernel avx2"})
+        assert r.returncode != 0 and "kernel avx2 is not available" in r.output
+
+
 @pytest.mark.parametrize("model", ["epsd", "none"])
-def test_candidate_list_gives_the_whole_list_bits(tmp_path, data, monkeypatch, model):
+def test_candidate_list_gives_the_whole_list_bits(tmp_path, data, model):
     """Each step visits only the candidate pairs (closer than r_i + r_j + a fraction of the
     neighbor skin), rebuilt when an atom has moved half that. With a candidate skin of 0.2 %
     of the neighbor skin (2 um) the list is rebuilt every 20-40 steps between neighbor list
@@ -91,18 +118,20 @@ def test_candidate_list_gives_the_whole_list_bits(tmp_path, data, monkeypatch, m
     would miss contacts. Both equal the whole-list walk (fraction 0) bit for bit."""
     runs = {}
     for frac in ("0", "0.002", None):
-        if frac is None:
-            monkeypatch.delenv("TBAGS_CONTACT_SKIN", raising=False)
-        else:
-            monkeypatch.setenv("TBAGS_CONTACT_SKIN", frac)
         wd = tmp_path / ("default" if frac is None else "f" + frac)
-        run(wd, data, model)
+        run(wd, data, model, options="" if frac is None else "contact_skin " + frac)
         runs[frac] = dump_and_thermo(wd)
     assert runs["0.002"] == runs["0"]
     assert runs[None] == runs["0"]
 
 
-def test_candidate_skin_must_not_be_negative(tmp_path, data, monkeypatch):
-    monkeypatch.setenv("TBAGS_CONTACT_SKIN", "-0.1")
-    r = lmprun.run(DECK, tmp_path, variables={"data": data, "model": "epsd", "newton": "on"})
-    assert "TBAGS_CONTACT_SKIN=-0.1 must be a fraction >= 0" in r.output
+@pytest.mark.parametrize("options,message", [
+    ("contact_skin -0.1", "contact_skin must be a fraction >= 0 of the neighbor skin"),
+    ("contact_skin", "contact_skin needs a fraction"),
+    ("kernel sse9", "kernel must be auto, avx2 or baseline, not 'sse9'"),
+    ("kernel", "kernel needs auto, avx2 or baseline"),
+])
+def test_bad_pair_style_keywords(tmp_path, data, options, message):
+    r = lmprun.run(DECK, tmp_path, variables={"data": data, "model": "epsd", "newton": "on",
+                                              "options": options})
+    assert r.returncode != 0 and message in r.error_line(), r.error_line()
