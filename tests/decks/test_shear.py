@@ -46,25 +46,34 @@ def test_bad_variables(tmp_path, var, message):
 
 
 def test_resume_from_checkpoint(filled, tmp_path):
-    """A checkpoint written while shearing resumes the shear stage: the plate continues from its
-    state and the CSV is appended up to u_final. The resumed run starts with a fresh force
-    evaluation (LAMMPS setup uses full-step velocities), so it is close, not bit-identical."""
+    """A checkpoint written while shearing resumes the shear stage on 2 ranks: the plate continues
+    from its state and the CSV is appended up to u_final. The checkpoint is picked by name: the
+    deck alternates shear.restart.1 and .2 every du_dump of u, so with checkpoints at 0.2, 0.4 and
+    0.6 mm, .2 holds u = 0.4 mm. The resumed run starts with a fresh force evaluation (LAMMPS
+    setup uses full-step velocities) on another decomposition, so it is close, not bit-identical:
+    its first three rows (every 0.02 mm) are within 0.5 % of the straight run's S range and 1 um
+    of w; further on, the round-off difference grows until a grain collapse happens some steps
+    earlier or later (measured: w jumps 0.02 mm apart after 0.1 mm), so all ten rows are held to
+    5 % of the S range and 0.05 mm of w (the spread between realizations is larger)."""
     import shutil
     shutil.copy(filled / "fill.data", tmp_path)
-    v = dict(SIZE, v=0.02, ufinal=0.0006, du_dump=0.0002)
+    v = dict(SIZE, v=0.02, ufinal=0.0006, du_dump=0.0002, du_csv=2e-5)
     lmprun.run(INPUTS / "in.shear", tmp_path, variables=v).check()
     straight = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)
-    older = min(tmp_path.glob("shear.restart.*"), key=lambda p: p.stat().st_mtime_ns)
     # the checkpoint's row is not written again: the resumed rows continue after it
-    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(v, restart=older.name)).check()
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, np_ranks=2,
+                     variables=dict(v, restart="shear.restart.2")).check()
     rows = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)[len(straight):]
-    first = rows[0]
-    same = straight[np.isclose(straight["u_mm"], first["u_mm"])][0]
-    print("resumed at u = %.2f mm: S %.3f N (straight %.3f), w %.4f mm (straight %.4f); last u %.2f mm"
-          % (first["u_mm"], first["S_N"], same["S_N"], first["w_mm"], same["w_mm"], rows["u_mm"][-1]))
-    assert 0.0 < first["u_mm"] < 0.6 and rows["u_mm"][-1] == pytest.approx(0.55, abs=1e-3)
-    assert abs(first["S_N"] - same["S_N"]) < 0.01 * abs(same["S_N"])
-    assert abs(first["w_mm"] - same["w_mm"]) < 1e-3
+    same = straight[len(straight) - len(rows):]
+    span = straight["S_N"].max() - straight["S_N"].min()
+    print("resumed from u = 0.4 mm on 2 ranks, %d rows: max |dS| %.3f N (S range %.1f N), max |dw| %.2e mm"
+          % (len(rows), np.abs(rows["S_N"] - same["S_N"]).max(), span, np.abs(rows["w_mm"] - same["w_mm"]).max()))
+    assert len(rows) == 10 and rows["u_mm"][0] == pytest.approx(0.41, abs=1e-3)
+    assert np.allclose(rows["u_mm"], same["u_mm"], atol=1e-4)
+    assert np.abs(rows["S_N"][:3] - same["S_N"][:3]).max() < 0.005 * span
+    assert np.abs(rows["w_mm"][:3] - same["w_mm"][:3]).max() < 1e-3
+    assert np.abs(rows["S_N"] - same["S_N"]).max() < 0.05 * span
+    assert np.abs(rows["w_mm"] - same["w_mm"]).max() < 0.05
     assert "SHEARED: u 0.600 mm" in res.output
 
 
