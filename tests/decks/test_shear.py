@@ -138,3 +138,22 @@ def test_yarn_shear_spring_is_a_choice(filled, tmp_path):
         S[k] = np.genfromtxt(wd / "shear.csv", delimiter=",", names=True)["S_N"][-1]
     print("S at 0.55 mm: %.2f N with the shear spring, %.2f N without" % (S[-1], S[0]))
     assert S[0] < 0.5 * S[-1]
+
+
+def test_overloaded_bag_tears(filled, tmp_path):
+    """The tiny bag compressed to 10 kN (8 MPa on its 35 x 35 mm sand plan, 80 times the paper's
+    highest stress): yarns stretch past 16 % and break. The CSV's broken_bonds (from compute
+    nbond/atom: bond ends lost, halved) equals the count from the bond dumps (compute bond/local
+    lists the bonds still there: the intact bag's 512 less them), at every dump."""
+    import shutil
+    shutil.copy(filled / "fill.data", tmp_path)
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(
+        SIZE, Fv=10000, v=0.02, ufinal=0.0002, du_dump=0.0001, vmax_compress=0.1)).check()
+    rows = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)
+    broken = int(res.output.split("broken bonds")[-1].split()[0])
+    dumps = sorted(tmp_path.glob("dump.bonds.*"), key=lambda p: int(p.suffix[1:]))
+    listed = [int(p.read_text().splitlines()[3]) for p in dumps]
+    print("broken bonds: CSV %s, last line %d; bonds listed in the dumps %s of 512" % (rows["broken_bonds"], broken, listed))
+    assert broken > 0 and len(dumps) == 3
+    assert rows["broken_bonds"][-1] == broken
+    assert all(512 - n == broken for n in listed)
