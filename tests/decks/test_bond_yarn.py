@@ -79,6 +79,89 @@ def test_bond_breaks_at_the_break_strain(tmp_path, brk):
     assert eps[first - 1] <= target + 1e-9 and eps[first] >= target - 1e-9 and eps[first] - eps[first - 1] < 0.011
 
 
+def test_axial_damping_adds_g_n_times_the_stretch_rate(tmp_path):
+    """damping g_n 0 0: pulled at v, F = A sigma(eps) + g_n v while stretched (the closed form of a
+    viscous dashpot beside the yarn); pushed, still no force (the dashpot acts in tension only)."""
+    g = 0.5
+    d = pull(tmp_path / "pull", 0.05, 15000, "damping %g 0 0" % g)
+    eps, F = d[:, 0], d[:, 1]
+    e_t, s_t = table()
+    t = eps > 1e-4
+    extra = F[t] - A * np.interp(eps[t], e_t, s_t)
+    print("damping force: %.6f to %.6f N (g_n v = %.6f N)" % (extra.min(), extra.max(), g * 0.05))
+    assert np.allclose(extra, g * 0.05, rtol=1e-6, atol=1e-9)
+    pushed = pull(tmp_path / "push", -0.05, 5000, "damping %g 0 0" % g)
+    assert np.abs(pushed[:, 1]).max() == 0.0
+
+
+UNLOAD = HEAD + """
+create_atoms 1 single 0 0 0
+create_atoms 1 single 0.005 0 0
+set type 1 diameter 0.005
+set type 1 density 450
+""" + PAIR_NONE + BOND.replace("BONDEXTRA", "unload plastic") + """
+create_bonds single/bond 1 1 2
+group a id 1
+group b id 2
+variable eps equal (x[2]-x[1]-0.005)/0.005
+variable F equal -fx[2]
+fix out all print 100 "$(v_eps:%.12g) $(v_F:%.12g)" file unload1.txt screen no
+timestep 1e-6
+fix m1 a move linear 0 0 0
+# pull to 8 %, unload to 5 % (the checkpoint), then (unload2.txt) to 1 % and reload to 10 %
+fix m2 b move linear 0.05 0 0
+run 8000
+unfix m2
+fix m2 b move linear -0.05 0 0
+run 3000
+write_restart unload.restart
+"""
+
+RELOAD = """
+units si
+read_restart unload.restart
+comm_modify vel yes
+pair_style zero 0.006
+pair_coeff * *
+group a id 1
+group b id 2
+variable eps equal (x[2]-x[1]-0.005)/0.005
+variable F equal -fx[2]
+fix out all print 100 "$(v_eps:%.12g) $(v_F:%.12g)" file unload2.txt screen no
+timestep 1e-6
+fix m1 a move linear 0 0 0
+fix m2 b move linear -0.05 0 0
+run 4000
+unfix m2
+fix m2 b move linear 0.05 0 0
+run 9000
+"""
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_plastic_unloading_across_restart(tmp_path, ranks):
+    """unload plastic: pulled to 8 %, back to 1 % through a restart (read on 1 or 2 ranks), then
+    to 10 %: the force follows the table while loading, the line of the initial modulus E_0 from
+    (8 %, sigma(8 %)) down to zero while unloading and reloading (slack below the permanent
+    strain, 1.2 %), and the table again past 8 %: the largest strain survives the restart file."""
+    lmprun.run(UNLOAD, tmp_path).check()
+    lmprun.run(RELOAD, tmp_path, np_ranks=ranks).check()
+    d = np.vstack([np.loadtxt(tmp_path / "unload1.txt"), np.loadtxt(tmp_path / "unload2.txt")])
+    eps, F = d[:, 0], d[:, 1]
+    e_t, s_t = table()
+    E0 = s_t[1] / e_t[1]
+    emax = np.maximum.accumulate(eps)
+    want = A * np.maximum(0.0, np.interp(emax, e_t, s_t) - E0 * (emax - eps))
+    err = np.abs(F - want).max() / A / s_t.max()
+    unloaded = eps < emax - 1e-3
+    slack = want == 0
+    print("%d ranks: max |F - closed form| / F_max %.2e over %d rows (%d unloading, %d slack); "
+          "strain %.3f..%.3f" % (ranks, err, len(F), unloaded.sum(), slack.sum(), eps.min(), eps.max()))
+    assert eps.max() > 0.099 and eps[unloaded].min() < 0.011
+    assert unloaded.sum() > 50 and slack.sum() >= 4 and (F[slack] == 0).all()
+    assert err < 1e-6
+
+
 ROTATE = HEAD + """
 create_atoms 1 single 0 0 0
 create_atoms 1 single 0.005 0 0
