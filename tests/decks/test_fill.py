@@ -32,6 +32,28 @@ def test_fill_small_bag(tmp_path):
     assert len(sand) == grains and max(counts) - min(counts) <= 1, counts
     e_exact = inner / np.sum(np.pi / 6 * sand[:, 3] ** 3) - 1
     assert abs(e - e_exact) < 1e-4, (e, e_exact)
+    # the void ratio measured in the settled bag (not the count's formula): the deck's inner box
+    # between the mean planes of the six faces, recomputed here from the data file, and a second
+    # measure, the convex hull of the bag particles shrunk by their radius (Steiner's formula for
+    # a box-like body: it counts the sides' bulge); both within 0.03 of the nominal value
+    from scipy.spatial import ConvexHull
+    measured = float(line.split("void ratio measured ")[1].split()[0])
+    bag = np.array([[float(x) for x in l.split()[5:8]] for l in atoms if l.strip() and l.split()[2] == "1"])
+    s, r = 0.005, 0.0025
+    dims = []
+    for k in range(3):
+        lo = bag[bag[:, k] < bag[:, k].min() + 0.25 * s, k].mean()
+        hi = bag[bag[:, k] > bag[:, k].max() - 0.25 * s, k].mean()
+        dims.append(hi - lo - s)
+    vs = np.sum(np.pi / 6 * sand[:, 3] ** 3)
+    e_faces = np.prod(dims) / vs - 1
+    hull = ConvexHull(bag)
+    outer = [d + 2 * r for d in dims]
+    e_hull = (hull.volume - hull.area * r + 4 * r * r * sum(outer) - 8 * r ** 3) / vs - 1
+    print("void ratio: nominal %.4f, measured (faces) %.4f, here %.4f, hull %.4f; inner box %s mm"
+          % (e, measured, e_faces, e_hull, ["%.2f" % (d * 1000) for d in dims]))
+    assert abs(measured - e_faces) < 1e-3
+    assert abs(e_faces - e) < 0.03 and abs(e_hull - e) < 0.03
 
 
 def test_paper_bag_holds_the_papers_count(tmp_path):

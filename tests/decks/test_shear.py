@@ -157,3 +157,40 @@ def test_overloaded_bag_tears(filled, tmp_path):
     assert broken > 0 and len(dumps) == 3
     assert rows["broken_bonds"][-1] == broken
     assert all(512 - n == broken for n in listed)
+
+
+def test_lammps_vtk_dumps_read_back(filled, tmp_path):
+    """in.shear's ParaView dumps written by LAMMPS's own dump vtk (when LAMMPS has the VTK package)
+    read back with VTK: one per dump step, every particle once, and the positions, ids, types,
+    radii and velocities of the custom dump of the same step (to its 6 printed digits)."""
+    import shutil
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    shutil.copy(filled / "fill.data", tmp_path)
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.0001)).check()
+    vtps = sorted(tmp_path.glob("dump.grains_*.vtp"))
+    if not vtps:
+        assert "VTK" not in lmprun.run("print 'packages'", tmp_path / "h", args=("-h",)).output.split(
+            "Installed packages:")[1].split("List of individual")[0]
+        pytest.skip("this LAMMPS has no VTK package: in.shear wrote no dump vtk files")
+    customs = sorted(tmp_path.glob("dump.grains.*"), key=lambda p: int(p.suffix[1:]))
+    assert len(vtps) == len(customs) == 3
+    for custom in customs:
+        step = int(custom.suffix[1:])
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(str(tmp_path / ("dump.grains_%d.vtp" % step)))
+        reader.Update()
+        pd = reader.GetOutput()
+        cols, t = lmprun.read_dump(custom)
+        col = {c: t[:, cols.index(c)] for c in cols}
+        ids = vtk_to_numpy(pd.GetPointData().GetArray("id")).astype(int)
+        assert pd.GetNumberOfPoints() == len(t) == 411 and sorted(ids) == sorted(col["id"].astype(int))
+        order = np.argsort(ids)
+        mine = np.argsort(col["id"])
+        xyz = vtk_to_numpy(pd.GetPoints().GetData())[order]
+        assert np.allclose(xyz, np.stack([col[c] for c in "xyz"], axis=1)[mine], rtol=1e-5, atol=1e-9)
+        v = vtk_to_numpy(pd.GetPointData().GetArray("v"))[order]
+        assert np.allclose(v, np.stack([col[c] for c in ("vx", "vy", "vz")], axis=1)[mine], rtol=1e-5, atol=1e-9)
+        for name in ("type", "radius"):
+            got = vtk_to_numpy(pd.GetPointData().GetArray(name))[order]
+            assert np.allclose(got, col[name][mine], rtol=1e-5), name
