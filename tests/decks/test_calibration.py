@@ -99,6 +99,39 @@ def test_fit_runs_end_to_end_on_a_tiny_sample(tmp_path):
     assert again.returncode == 0 and "run mu" not in again.stdout and "sample" not in again.stdout
 
 
+def test_fit_recovers_a_known_friction(tmp_path):
+    """A synthetic target made by the deck itself (the tiny sample at 0.2 MPa with mu = 0.6,
+    written as a data set with its manifest), then a fit of mu from 0.3 with 8 evaluations (grid
+    0.45, 0.75, then Nelder-Mead): the search converges, the best mu is within 0.05 of 0.6 and
+    its misfit under a tenth of the start's."""
+    import csv
+    import hashlib
+    import json
+    common = TINY_ARGS + ["--pressures", "0.2", "--fit", "mu", "--mur", "0.05", "--grid-mur", "0.05"]
+    made = run_fit(common + ["--mu", "0.6", "--budget", "1", "--grid-mu", "0.6", "--no-figure"], tmp_path)
+    assert made.returncode == 0, made.stdout[-2000:] + made.stderr[-2000:]
+    runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
+    assert len(runs) == 1
+    curve = np.genfromtxt(next(iter(runs.values()))["csv"], delimiter=",", names=True, comments="#")
+    data = tmp_path / "synthetic"
+    data.mkdir()
+    rows = np.column_stack([curve["eps_v_pct"], 0 * curve["ratio"], 0 * curve["ratio"],
+                            curve["eps_a_pct"], curve["ratio"]])[1:]
+    np.savetxt(data / "Synthetic_0.2.data", rows, header="e_v e_x e_y e_z s33/s11 (%): in.triax at mu 0.6")
+    digest = hashlib.sha256((data / "Synthetic_0.2.data").read_bytes()).hexdigest()
+    with open(data / "manifest.csv", "w", newline="") as fh:
+        csv.writer(fh).writerows([["sigma3_MPa", "file", "sha256"], ["0.2", "Synthetic_0.2.data", digest]])
+    res = run_fit(common + ["--mu", "0.3", "--budget", "8", "--grid-mu", "0.45,0.75", "--data", str(data),
+                            "--no-figure"], tmp_path)
+    print(res.stdout[-3000:])
+    assert res.returncode == 0, res.stderr[-2000:]
+    found = [l for l in res.stdout.splitlines() if l.startswith("fit.py: evaluation ")]
+    J = {float(l.split(" mu ")[1].split()[0]): float(l.split("misfit")[1]) for l in found}
+    best = min(J, key=J.get)
+    print("evaluations (mu: misfit): %s; best mu %.4f" % (sorted(J.items()), best))
+    assert len(J) >= 6 and abs(best - 0.6) < 0.05 and J[best] < 0.1 * J[0.3]
+
+
 def no_report(tmp_path):
     return not (tmp_path / "report").exists() or not any((tmp_path / "report").iterdir())
 
