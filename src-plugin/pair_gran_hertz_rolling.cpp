@@ -35,7 +35,8 @@ namespace law = tbags::contact;
 static const char *STYLE = "Pair style gran/hertz/rolling";
 
 PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
-    Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3), ntypes1(0),
+    Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3),
+    history_model(-1), ntypes1(0),
     freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
     maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr),
     packx(nullptr), packv(nullptr), npack(0), ncand(0), x0(nullptr), nx0(0), cand_nall(0),
@@ -269,7 +270,21 @@ void PairGranHertzRolling::init_style()
   } else {
     fix_history = dynamic_cast<FixNeighHistory *>(modify->get_fix_by_id("NEIGH_HISTORY_GHR"));
     if (!fix_history) error->all(FLERR, "{}: could not find its neighbor history fix", STYLE);
+    // pair_style re-issued with another rolling model (LAMMPS then only calls settings()): the
+    // store holds the old model's records, of another size and meaning; start a new one, in place
+    if (history_model != rolling || fix_history->get_dnum() != size_history) {
+      if (comm->me == 0)
+        error->warning(FLERR, "{}: the rolling model changed since the last run: the contact "
+                       "histories start again from zero", STYLE);
+      // (replace_fix needs the new ID free: the old store is renamed first)
+      delete[] fix_history->id;
+      fix_history->id = utils::strdup("NEIGH_HISTORY_GHR_OLD");
+      fix_history = dynamic_cast<FixNeighHistory *>(modify->replace_fix(
+          "NEIGH_HISTORY_GHR_OLD", "NEIGH_HISTORY_GHR all NEIGH_HISTORY/TBAGS " + std::to_string(size_history), 1));
+      fix_history->pair = this;
+    }
   }
+  history_model = rolling;
 
   auto fixlist = modify->get_fix_by_style("^freeze");
   if (fixlist.size() > 1) error->all(FLERR, "{}: only one fix freeze is allowed", STYLE);

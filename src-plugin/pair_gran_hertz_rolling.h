@@ -73,6 +73,7 @@ class PairGranHertzRolling : public Pair {
   int rolling;            // tbags::contact::Rolling
   bool limit_damping;
   int size_history;
+  int history_model;    // the rolling model the history store was made for (-1: none yet)
   int ntypes1;            // ntypes + 1
   int freeze_group_bit;
   int neighprev;

@@ -6,6 +6,7 @@ AVX2 and baseline builds agree bit for bit there too."""
 import pytest
 
 import lmprun
+import packing
 
 DECK = lmprun.BPM_HEAD + """
 create_atoms 1 single 0 0 0
@@ -72,3 +73,49 @@ def test_factor_path_builds_agree(tmp_path):
     print(avx2, base)
     assert avx2 == base
     assert avx2[1] != forces(tmp_path, 1, 200, "-base", options="kernel baseline")[1]    # the weight acted
+
+
+REISSUE_A = lmprun.packing_head() + """pair_style gran/hertz/rolling none
+pair_coeff * * material 1.8e9 0.1 friction 0.31 restitution 0.2
+timestep 1e-6
+fix 1 all nve/sphere
+run 200
+write_data mid.data nocoeff
+# the same style again with another rolling model: LAMMPS only calls settings() on the pair
+pair_style gran/hertz/rolling epsd
+pair_coeff * * material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2
+run 200
+write_dump all custom final.dump id x y z vx vy vz omegax omegay omegaz modify sort id format float %.17g
+"""
+REISSUE_B = """
+units si
+atom_style sphere
+atom_modify map array
+boundary p p p
+comm_modify vel yes
+read_data mid.data
+pair_style gran/hertz/rolling epsd
+pair_coeff * * material 1.8e9 0.1 friction 0.31 rolling 0.05 restitution 0.2
+timestep 1e-6
+fix 1 all nve/sphere
+run 200
+write_dump all custom fresh.dump id x y z vx vy vz omegax omegay omegaz modify sort id format float %.17g
+"""
+
+
+def test_reissued_pair_style_with_another_rolling_model(tmp_path):
+    """pair_style gran/hertz/rolling none, a run, then pair_style ... epsd: the history store is
+    made anew for the new model (another record size: reading the old store would run past its
+    records), with a warning; the second run equals a fresh EPSD run from the same state (zero
+    history), to round-off."""
+    import numpy as np
+    data = packing.make(tmp_path / "packing")
+    res = lmprun.run(REISSUE_A, tmp_path, variables={"data": data}).check()
+    assert "the rolling model changed since the last run" in res.output
+    lmprun.run(REISSUE_B, tmp_path).check()
+    cols, a = lmprun.read_dump(tmp_path / "final.dump")
+    _, b = lmprun.read_dump(tmp_path / "fresh.dump")
+    dx = np.abs(a[:, 1:4] - b[:, 1:4]).max()
+    dv = lmprun.max_rel_diff(a[:, 4:10], b[:, 4:10])
+    print("re-issued against fresh: max |dx| %.2e m, max |dv|/max|v| %.2e" % (dx, dv))
+    assert dx < 1e-12 and dv < 1e-9
