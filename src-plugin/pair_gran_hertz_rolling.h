@@ -21,9 +21,9 @@
 #define TBAGS_TARGET_AVX2
 #endif
 
-// the scatter pass without GCC's SLP vectorizer: its shuffles cost more than they saved (with the
-// packed atom records, 358 -> 314 instructions per contact-step on the benchmark); the optimize
-// attribute is GCC's own, other compilers get noinline only
+// the scatter pass without GCC's SLP vectorizer, whose shuffles cost more than they saved (it
+// came with the packed atom records; the two took the benchmark from 358 to 314 instructions per
+// contact-step); the optimize attribute is GCC's own, other compilers get noinline only
 #if defined(__GNUC__) && !defined(__clang__)
 #define TBAGS_NOINLINE_NO_SLP __attribute__((noinline, optimize("no-tree-slp-vectorize")))
 #else
