@@ -31,16 +31,22 @@ if [ ! -f "$dest/$tarball" ]; then
           -o Dir::Etc::preferencesparts="$work/etc/preferences.d" -o APT::Sandbox::User=root)
   echo "fetch-lammps: downloading the LAMMPS source package (trixie) ..." >&2
   apt-get "${aptopt[@]}" -qq update >&2 || { echo "fetch-lammps: apt-get update of the trixie deb-src entry failed" >&2; exit 1; }
-  # apt exits non-zero because the .dsc answers 404 while the tarball arrives: judge by the sha256.
-  (cd "$work" && apt-get "${aptopt[@]}" -qq source --download-only "lammps=20250204+dfsg.1-2" >&2) || true
-  [ -f "$work/$tarball" ] || { echo "fetch-lammps: $tarball did not arrive; set LAMMPS_TARBALL=/path/to/it or use -DLAMMPS_SOURCE_DIR=" >&2; exit 1; }
+  # apt exits non-zero and prints "404 Not Found" because the .dsc is missing from the archive while
+  # the tarball arrives: expected, so apt's output goes to a log and the sha256 below decides
+  log="$dest/fetch-lammps.apt.log"
+  (cd "$work" && apt-get "${aptopt[@]}" -qq source --download-only "lammps=20250204+dfsg.1-2" >"$log" 2>&1) || true
+  [ -f "$work/$tarball" ] || { cat "$log" >&2; echo "fetch-lammps: $tarball did not arrive (apt's output above, in $log); set LAMMPS_TARBALL=/path/to/it or use -DLAMMPS_SOURCE_DIR=" >&2; exit 1; }
   mv "$work/$tarball" "$dest/$tarball"
+  fetched=1
 fi
 got=$(sha256sum "$dest/$tarball" | cut -d' ' -f1)
 if [ "$got" != "$sha" ]; then
   rm -f "$dest/$tarball"
   echo "fetch-lammps: sha256 mismatch for $tarball (got $got, want $sha); refusing to build. Delete the cache and retry, or use -DLAMMPS_SOURCE_DIR=/your/lammps" >&2
   exit 1
+fi
+if [ -n "${fetched:-}" ]; then
+  echo "fetch-lammps: $tarball fetched and verified (sha256 ${sha:0:12}...; the source package's .dsc is missing from the archive, as expected: apt's messages are in $dest/fetch-lammps.apt.log)" >&2
 fi
 tar -C "$dest" -xJf "$dest/$tarball"
 [ -f "$srcdir/src/version.h" ] || { echo "fetch-lammps: $tarball did not unpack to $srcdir" >&2; exit 1; }
