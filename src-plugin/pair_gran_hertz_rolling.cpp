@@ -33,6 +33,10 @@ using namespace LAMMPS_NS;
 namespace law = tbags::contact;
 
 static const char *STYLE = "Pair style gran/hertz/rolling";
+// the candidate list is rebuilt once an atom has moved this fraction of the candidate skin since
+// the build: two atoms then approached by at most 2 x 0.49 = 0.98 skins, so a pair left out
+// (farther apart than r_i + r_j + skin) is still 0.02 skins from touching
+static constexpr double CAND_MOVE_LIMIT = 0.49;
 
 PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3),
@@ -301,10 +305,9 @@ void PairGranHertzRolling::init_style()
   MPI_Allreduce(&onerad[1], &maxrad[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
 
   // candidate list (see the header): its skin a fraction of the neighbor skin (contact_skin,
-  // 1/4 by default; 0: none, the whole list every step; the results are the same bits); an atom
-  // moving 0.49 cskin forces a rebuild (pairs left out stay 0.02 cskin apart)
+  // 1/4 by default; 0: none, the whole list every step; the results are the same bits)
   cskin = contact_skin * neighbor->skin;
-  cand_lim2 = (0.49 * cskin) * (0.49 * cskin);
+  cand_lim2 = (CAND_MOVE_LIMIT * cskin) * (CAND_MOVE_LIMIT * cskin);
   cand_nall = 0;
 
   choose_kernel();
@@ -784,7 +787,7 @@ const law::Params *PairGranHertzRolling::uniform_params() const
 
 /* ----------------------------------------------------------------------
    the kernel's per-atom data of local and ghost atoms, packed into two aligned records;
-   returns whether the candidate list is still valid: no atom moved more than 0.49 cskin
+   returns whether the candidate list is still valid: no atom moved more than CAND_MOVE_LIMIT cskin
    and no radius changed since its build (same atoms)
 ------------------------------------------------------------------------- */
 
@@ -1225,7 +1228,6 @@ double PairGranHertzRolling::radii2cut(double r1, double r2)
   return r1 + r2;
 }
 
-void PairGranHertzRolling::reset_dt() {}
 
 void *PairGranHertzRolling::extract(const char *str, int &dim)
 {

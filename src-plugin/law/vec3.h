@@ -39,7 +39,6 @@ inline void store3(const V3 &a, double *b) { b[0] = a.x; b[1] = a.y; b[2] = a.z;
 inline V3 operator+(const V3 &a, const V3 &b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline V3 operator-(const V3 &a, const V3 &b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline V3 operator*(double s, const V3 &a) { return V3{s * a.x, s * a.y, s * a.z}; }
-inline V3 operator/(const V3 &a, double s) { return V3{a.x / s, a.y / s, a.z / s}; }
 inline double dot(const V3 &a, const V3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline V3 cross(const V3 &a, const V3 &b)
 {
