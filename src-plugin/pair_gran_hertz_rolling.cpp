@@ -1245,23 +1245,33 @@ void *PairGranHertzRolling::extract(const char *str, int &dim)
 
 /* ---------------------------------------------------------------------- */
 
+// restart settings: the rolling model plus SETTINGS_V2 marks the record that also holds the kernel
+// choice and the contact skin (files of tbags 0.3 and before hold the model and limit_damping only)
+static constexpr int SETTINGS_V2 = 16;
+
 void PairGranHertzRolling::write_restart_settings(FILE *fp)
 {
-  int ld = limit_damping ? 1 : 0;
-  fwrite(&rolling, sizeof(int), 1, fp);
-  fwrite(&ld, sizeof(int), 1, fp);
+  int head[3] = {rolling + SETTINGS_V2, limit_damping ? 1 : 0, kernel_choice};
+  fwrite(head, sizeof(int), 3, fp);
+  fwrite(&contact_skin, sizeof(double), 1, fp);
 }
 
 void PairGranHertzRolling::read_restart_settings(FILE *fp)
 {
-  int ld = 0;
+  int head[3] = {0, 0, KERNEL_AUTO};
   if (comm->me == 0) {
-    utils::sfread(FLERR, &rolling, sizeof(int), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &ld, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, head, sizeof(int), 2, fp, nullptr, error);
+    if (head[0] >= SETTINGS_V2) {
+      utils::sfread(FLERR, &head[2], sizeof(int), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &contact_skin, sizeof(double), 1, fp, nullptr, error);
+      head[0] -= SETTINGS_V2;
+    }
   }
-  MPI_Bcast(&rolling, 1, MPI_INT, 0, world);
-  MPI_Bcast(&ld, 1, MPI_INT, 0, world);
-  limit_damping = ld != 0;
+  MPI_Bcast(head, 3, MPI_INT, 0, world);
+  MPI_Bcast(&contact_skin, 1, MPI_DOUBLE, 0, world);
+  rolling = head[0];
+  limit_damping = head[1] != 0;
+  kernel_choice = head[2];
   size_history = law::history_size(rolling);
 }
 

@@ -135,3 +135,25 @@ def test_bad_pair_style_keywords(tmp_path, data, options, message):
     r = lmprun.run(DECK, tmp_path, variables={"data": data, "model": "epsd", "newton": "on",
                                               "options": options})
     assert r.returncode != 0 and message in r.error_line(), r.error_line()
+
+
+RESTARTED = """
+units si
+read_restart kernel.restart
+comm_modify vel yes
+timestep 1e-6
+fix 1 all nve/sphere
+run 10
+"""
+
+
+def test_kernel_keywords_survive_a_restart(tmp_path, data):
+    """kernel and contact_skin are stored in the restart file with the rolling model: the run
+    that reads it logs the same kernel choice."""
+    deck = DECK.replace("write_dump all custom final.dump", "write_restart kernel.restart\nwrite_dump all custom final.dump")
+    lmprun.run(deck, tmp_path, variables={"data": data, "model": "cdt", "newton": "on",
+                                          "options": "kernel baseline contact_skin 0.1"}).check()
+    res = lmprun.run(RESTARTED, tmp_path).check()
+    line = [l for l in res.output.splitlines() if "batch kernel" in l][0]
+    print(line)
+    assert "batch kernel baseline" in line and "(kernel baseline)" in line
