@@ -77,10 +77,9 @@ double BondYarn::equilibrium_distance(int i)
 double BondYarn::axial(int type, double r, double vn, double &eps) const
 {
   const yarn::Params &p = coeffs[type].p;
-  eps = (r - r0[type]) / r0[type];
+  eps = yarn::strain(r, r0[type]);
   double emax = 0.0;
-  const double f = yarn::axial_force(p, eps, &emax, false);
-  return eps > 0.0 ? f + p.gn * vn : 0.0;
+  return yarn::axial_damped(p, yarn::axial_force(p, eps, &emax, false), eps, vn);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -106,7 +105,7 @@ void BondYarn::compute(int eflag, int vflag)
                         (v[i1][2] - v[i2][2]) * del[2]) / r;
     double eps;
     const double fax = axial(type, r, vn, eps);
-    if (eps > coeffs[type].p.eps_break) {
+    if (yarn::breaks(coeffs[type].p, eps)) {
       // turn the bond off where it is stored (both copies with newton_bond off)
       bondlist[n][2] = -type;
       for (int i : {i1, i2}) {

@@ -91,6 +91,23 @@ struct Params {
 // history per bond
 enum { R0 = 0, EPSMAX = 1, FS = 2, MB = 5, MT = 8, NHISTORY = 9 };
 
+// strain of a bond of length r and rest length r0, and whether it breaks at that strain
+inline double strain(double r, double r0)
+{
+  return (r - r0) / r0;
+}
+inline bool breaks(const Params &p, double eps)
+{
+  return eps > p.eps_break;
+}
+
+// the axial force with the dashpot beside the yarn: g_n v_n added while stretched only (a slack
+// yarn carries nothing); fax from axial_force(), vn the stretching rate (m/s)
+inline double axial_damped(const Params &p, double fax, double eps, double vn)
+{
+  return fax + (eps > 0.0 ? p.gn * vn : 0.0);
+}
+
 // axial force (N) for strain eps; eps_max is the largest strain reached (updated when asked)
 inline double axial_force(const Params &p, double eps, double *eps_max, bool update)
 {
@@ -137,10 +154,10 @@ TBAGS_INLINE void compute(const Params &p, const Bond &b, double *hist, bool upd
   const double r = len(dx);
   const double n[3] = {dx[0] / r, dx[1] / r, dx[2] / r};
   const double r0 = hist[R0];
-  const double eps = (r - r0) / r0;
+  const double eps = strain(r, r0);
   o.r = r;
   o.eps = eps;
-  o.broken = eps > p.eps_break;
+  o.broken = breaks(p, eps);
 
   // relative velocity of j's bond end with respect to i's, at the bond centre
   const double h = 0.5 * r;
@@ -175,7 +192,7 @@ TBAGS_INLINE void compute(const Params &p, const Bond &b, double *hist, bool upd
   }
 
   o.fax = axial_force(p, eps, hist + EPSMAX, update);
-  const double fn = o.fax + (eps > 0.0 ? p.gn * vn : 0.0);
+  const double fn = axial_damped(p, o.fax, eps, vn);
   double m[3];
   for (int k = 0; k < 3; k++) {
     o.f[k] = fn * n[k] + fs[k] + p.gs * vs[k];
