@@ -30,7 +30,7 @@ class BondBPMYarn : public BondBPM {
   double single(int, double, int, int, double &) override;
 
  protected:
-  std::vector<YarnCoeff> coeffs;    // per bond type, sized once (Params point into it)
+  std::vector<YarnCoeff> coeffs;    // per bond type
   int warned_integrator = 0;
   void allocate();
   void store_data();

@@ -86,7 +86,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
                axial_only ? " r0 R0" : " poisson NU");
   c.file = arg[2];
   c.keyword = arg[3];
-  read_yarn_table(lmp, style, c.file, c.keyword, c.curve, c.p.force_table);
+  read_yarn_table(lmp, style, c.file, c.keyword, *c.curve, c.p.force_table);
   double E = -1.0, nu = -2.0, kappa = -1.0, brk = -1.0;
   c.p.d = -1.0;
   c.p.gn = c.p.gs = c.p.gr = 0.0;
@@ -150,7 +150,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
     error->all(FLERR, "{}: bond_coeff needs 'diameter D' with D > 0 (m)", style);
   if (axial_only && *r0 <= 0.0)
     error->all(FLERR, "{}: bond_coeff needs 'r0 R0' with R0 > 0 (m), the unstretched length", style);
-  const double last = c.curve.eps.back();
+  const double last = c.curve->eps.back();
   if (brk < 0.0) brk = last;
   if (brk <= 0.0 || brk > last)
     error->all(FLERR, "{}: break strain {} must be in (0, {}] (the table's last strain)", style, brk, last);
@@ -158,7 +158,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
   if (!axial_only) {
     if (nu <= -1.0 || nu >= 0.5)
       error->all(FLERR, "{}: bond_coeff needs 'poisson NU' with -1 < NU < 0.5 (G = E/2(1+NU))", style);
-    const double E0 = c.p.force_table ? c.curve.slope0() / c.p.area() : c.curve.slope0();
+    const double E0 = c.p.force_table ? c.curve->slope0() / c.p.area() : c.curve->slope0();
     if (E < 0.0) E = E0;
     if (E <= 0.0) error->all(FLERR, "{}: E must be > 0 Pa", style);
     if (kappa < 0.0) kappa = 6.0 * (1.0 + nu) / (7.0 + 6.0 * nu);    // circular section
@@ -174,11 +174,11 @@ void LAMMPS_NS::write_yarn_coeff(FILE *fp, const YarnCoeff &c)
   const int set = c.set ? 1 : 0;
   fwrite(&set, sizeof(int), 1, fp);
   if (!set) return;
-  const int n = (int) c.curve.eps.size();
+  const int n = (int) c.curve->eps.size();
   const int lf = (int) c.file.size() + 1, lk = (int) c.keyword.size() + 1;
   fwrite(&n, sizeof(int), 1, fp);
-  fwrite(c.curve.eps.data(), sizeof(double), n, fp);
-  fwrite(c.curve.val.data(), sizeof(double), n, fp);
+  fwrite(c.curve->eps.data(), sizeof(double), n, fp);
+  fwrite(c.curve->val.data(), sizeof(double), n, fp);
   double v[10] = {c.p.d, c.p.E, c.p.nu, c.p.kappa, c.p.eps_break, c.p.gn, c.p.gs, c.p.gr,
                   c.p.plastic ? 1.0 : 0.0, c.p.force_table ? 1.0 : 0.0};
   fwrite(v, sizeof(double), 10, fp);
@@ -200,16 +200,16 @@ void LAMMPS_NS::read_yarn_coeff(LAMMPS *lmp, FILE *fp, YarnCoeff &c)
   if (!set) return;
   if (me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
   MPI_Bcast(&n, 1, MPI_INT, 0, world);
-  c.curve.eps.resize(n);
-  c.curve.val.resize(n);
+  c.curve->eps.resize(n);
+  c.curve->val.resize(n);
   double v[10];
   if (me == 0) {
-    utils::sfread(FLERR, c.curve.eps.data(), sizeof(double), n, fp, nullptr, error);
-    utils::sfread(FLERR, c.curve.val.data(), sizeof(double), n, fp, nullptr, error);
+    utils::sfread(FLERR, c.curve->eps.data(), sizeof(double), n, fp, nullptr, error);
+    utils::sfread(FLERR, c.curve->val.data(), sizeof(double), n, fp, nullptr, error);
     utils::sfread(FLERR, v, sizeof(double), 10, fp, nullptr, error);
   }
-  MPI_Bcast(c.curve.eps.data(), n, MPI_DOUBLE, 0, world);
-  MPI_Bcast(c.curve.val.data(), n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(c.curve->eps.data(), n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(c.curve->val.data(), n, MPI_DOUBLE, 0, world);
   MPI_Bcast(v, 10, MPI_DOUBLE, 0, world);
   c.p.d = v[0];
   c.p.E = v[1];

@@ -6,6 +6,7 @@
 #include "law/yarn_law.h"
 #include "pointers.h"
 
+#include <memory>
 #include <string>
 
 namespace LAMMPS_NS {
@@ -13,25 +14,13 @@ namespace LAMMPS_NS {
 // one bond type's yarn coefficients: the curve and the law's parameters
 struct YarnCoeff {
   std::string file, keyword;
-  tbags::yarn::Curve curve;
-  tbags::yarn::Params p;    // p.curve always points at this object's curve
+  // the curve is shared by the copies of a coefficient set (one bond_coeff line for a range of
+  // types), so that p.curve stays valid when the set is copied or its vector grows
+  std::shared_ptr<tbags::yarn::Curve> curve = std::make_shared<tbags::yarn::Curve>();
+  tbags::yarn::Params p;    // p.curve points at *curve
   bool set = false;
 
-  YarnCoeff() { p.curve = &curve; }
-  YarnCoeff(const YarnCoeff &o) : file(o.file), keyword(o.keyword), curve(o.curve), p(o.p), set(o.set)
-  {
-    p.curve = &curve;
-  }
-  YarnCoeff &operator=(const YarnCoeff &o)
-  {
-    file = o.file;
-    keyword = o.keyword;
-    curve = o.curve;
-    p = o.p;
-    p.curve = &curve;
-    set = o.set;
-    return *this;
-  }
+  YarnCoeff() { p.curve = curve.get(); }
 };
 
 // Parse 'bond_coeff T table FILE KEYWORD diameter D poisson NU [E E] [shear KAPPA]
