@@ -1229,6 +1229,25 @@ double PairGranHertzRolling::radii2cut(double r1, double r2)
 }
 
 
+/* ----------------------------------------------------------------------
+   bytes of the per-type tables and of the kernel's buffers: the packed atom records (their
+   aligned_alloc, not memory->smalloc: the kernel's records need 32/64-byte alignment whatever
+   LAMMPS_MEMALIGN the LAMMPS build chose), the candidate list and the batch
+------------------------------------------------------------------------- */
+
+double PairGranHertzRolling::memory_usage()
+{
+  double bytes = Pair::memory_usage();
+  const double nt = atom->ntypes + 1.0;
+  // setflag, cutsq, mu, mur, cor per type pair; Emod, poiss, maxrad, matflag per type; the law
+  if (allocated) bytes += nt * nt * (4 * sizeof(double) + sizeof(int)) + nt * (3 * sizeof(double) + sizeof(int));
+  bytes += (double) law.capacity() * sizeof(law::Params);
+  bytes += (double) npack * (sizeof(AtomX) + sizeof(AtomV)) + (double) nx0 * sizeof(AtomX);
+  bytes += (double) cand.capacity() * sizeof(Cand);
+  if (batch) bytes += sizeof(Batch);
+  return bytes;
+}
+
 void *PairGranHertzRolling::extract(const char *str, int &dim)
 {
   dim = 0;

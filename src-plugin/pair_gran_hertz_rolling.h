@@ -53,6 +53,7 @@ class PairGranHertzRolling : public Pair {
   double atom2cut(int) override;
   double radii2cut(double, double) override;
   void *extract(const char *, int &) override;
+  double memory_usage() override;
 
   // per-type material and per-pair coefficients (public for the plate fix)
   const tbags::contact::Params &params(int i, int j) const { return law[i * (ntypes1) + j]; }
