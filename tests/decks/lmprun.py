@@ -113,6 +113,16 @@ write_dump all custom forces.dump id fx fy fz modify sort id format float %.17g
 """
 
 
+def force_torque_diff(dump_a, dump_b):
+    """Two write_dump files with fx fy fz tqx tqy tqz (sorted by id): the largest force and torque
+    differences, each relative to the largest value of the second."""
+    cols, a = read_dump(dump_a)
+    _, b = read_dump(dump_b)
+    f = [cols.index(c) for c in ("fx", "fy", "fz")]
+    t = [cols.index(c) for c in ("tqx", "tqy", "tqz")]
+    return max_rel_diff(a[:, f], b[:, f]), max_rel_diff(a[:, t], b[:, t])
+
+
 def contact_force_sums(workdir):
     """After a deck ending in CONTACT_DUMP: (contacts, ids, per-atom forces of compute(), sums of
     the contact forces per atom). Contact columns: id1 id2 dist, normal force on id1 (3),

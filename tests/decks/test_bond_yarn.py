@@ -26,7 +26,8 @@ pair_coeff * *
 """
 BOND = "bond_style bpm/yarn\nbond_coeff 1 table %s YARN_PP_TAPE diameter 0.001 poisson 0.3 BONDEXTRA\n" % TABLE
 
-PULL = HEAD + """
+# two 5 mm particles 5 mm apart, bonded (BONDEXTRA: more bond_coeff keywords), in groups a and b
+TWO_BONDED = HEAD + """
 create_atoms 1 single 0 0 0
 create_atoms 1 single 0.005 0 0
 set type 1 diameter 0.005
@@ -35,7 +36,9 @@ set type 1 density 450
 create_bonds single/bond 1 1 2
 group a id 1
 group b id 2
-fix m1 a move linear 0 0 0
+"""
+
+PULL = TWO_BONDED + """fix m1 a move linear 0 0 0
 fix m2 b move linear ${v} 0 0
 compute nb all nbond/atom
 compute nbt all reduce sum c_nb
@@ -94,16 +97,7 @@ def test_axial_damping_adds_g_n_times_the_stretch_rate(tmp_path):
     assert np.abs(pushed[:, 1]).max() == 0.0
 
 
-UNLOAD = HEAD + """
-create_atoms 1 single 0 0 0
-create_atoms 1 single 0.005 0 0
-set type 1 diameter 0.005
-set type 1 density 450
-""" + PAIR_NONE + BOND.replace("BONDEXTRA", "unload plastic") + """
-create_bonds single/bond 1 1 2
-group a id 1
-group b id 2
-variable eps equal (x[2]-x[1]-0.005)/0.005
+UNLOAD = TWO_BONDED.replace("BONDEXTRA", "unload plastic") + """variable eps equal (x[2]-x[1]-0.005)/0.005
 variable F equal -fx[2]
 fix out all print 100 "$(v_eps:%.12g) $(v_F:%.12g)" file unload1.txt screen no
 timestep 1e-6

@@ -12,15 +12,7 @@ import pytest
 import lmprun
 import packing
 
-DECK = """
-units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-newton ${newton}
-comm_modify vel yes
-read_data ${data}
-change_box all triclinic
+DECK = lmprun.packing_head("${newton}") + """change_box all triclinic
 velocity all set 2 2 2
 set group all omega 0 0 0
 pair_style gran/hertz/rolling epsd
