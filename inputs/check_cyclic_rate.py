@@ -23,7 +23,8 @@ def main(argv=None):
     ap.add_argument("--tol-k", type=float, default=0.05, help="relative tolerance on K_eq (0.05)")
     ap.add_argument("--tol-h", type=float, default=0.02, help="absolute tolerance on h_eq (0.02)")
     args = ap.parse_args(argv)
-    rows = cyclic.compare(cyclic.CyclicRun(args.fast), cyclic.CyclicRun(args.slow))
+    fast, slow = cyclic.CyclicRun(args.fast), cyclic.CyclicRun(args.slow)
+    rows = cyclic.compare(fast, slow)
     if not rows:
         raise SystemExit("check_cyclic_rate: the runs share no complete cycle")
     print("| u_a (mm) | cycle | K_eq fast (N/mm) | K_eq slow | change | h_eq fast | h_eq slow | change |")
@@ -39,7 +40,42 @@ def main(argv=None):
     worst_h = max(abs(r["dh"]) for r in rows)
     print("largest change: K_eq %.1f %% (tolerance %.0f %%), h_eq %.3f (tolerance %.3f) over %d cycles"
           % (100 * worst_k, 100 * args.tol_k, worst_h, args.tol_h, len(rows)))
+    # a rate effect is systematic; the scatter of slip events is not: the mean change over the
+    # cycles with its standard error, beside each run's own change from one cycle to the next
+    if len(rows) > 1:
+        dk = [r["dK_rel"] for r in rows]
+        dh = [r["dh"] for r in rows]
+        print("mean change over the %d cycles (+- standard error): K_eq %+.2f +- %.2f %%, h_eq %+.4f +- %.4f"
+              % (len(rows), 100 * mean(dk), 100 * sem(dk), mean(dh), sem(dh)))
+        for name, run in (("fast", fast), ("slow", slow)):
+            k, h = cycle_to_cycle(run)
+            if k:
+                print("%s run alone, from one cycle to the next at each amplitude: K_eq up to %.1f %%, h_eq up to %.3f"
+                      % (name, 100 * k, h))
     return 1 if bad else 0
+
+
+def mean(x):
+    return sum(x) / len(x)
+
+
+def sem(x):
+    m = mean(x)
+    return (sum((v - m) ** 2 for v in x) / (len(x) - 1) / len(x)) ** 0.5
+
+
+def cycle_to_cycle(run):
+    """The largest change of K_eq (relative) and h_eq between consecutive cycles of one amplitude,
+    after the first (which starts from the previous amplitude's state)."""
+    tab = {(t["amp"], t["cycle"]): t for t in cyclic.table(run)}
+    k = h = 0.0
+    for (amp, cyc), t in tab.items():
+        prev = tab.get((amp, cyc - 1))
+        if prev is None or cyc - 1 < 2:
+            continue
+        k = max(k, abs(t["K_eq_N_per_mm"] / prev["K_eq_N_per_mm"] - 1))
+        h = max(h, abs(t["h_eq"] - prev["h_eq"]))
+    return k, h
 
 
 if __name__ == "__main__":
