@@ -165,8 +165,8 @@ def figure(run, tab):
     aa.set_ylabel("slip fraction (films / plate)")
     ab.set_ylabel("amplitude (mm)")
     ac.set_xlabel("slip across the film (mm)")
-    ac.set_ylabel("force of the bag above on the film (kN)")
-    aa.legend(frameon=False, fontsize=6)
+    ac.set_ylabel("film force from above (kN)")
+    aa.legend(frameon=False, fontsize=6, loc="lower right")
     ab.legend(frameon=False, fontsize=5)
     ac.legend(frameon=False, fontsize=5)
     for ax, lab in ((aa, "(a)"), (ab, "(b)"), (ac, "(c)")):
