@@ -189,8 +189,8 @@ FixWallGranServo::~FixWallGranServo()
 }
 
 /* ----------------------------------------------------------------------
-   a film: its thickness, density and area (the bounds) give its mass; no servo (its normal force
-   is the difference of its faces' forces)
+   a film: its thickness, density and area (the bounds) give its mass (a servo on a film is
+   refused where it is parsed, parse_motion())
 ------------------------------------------------------------------------- */
 
 void FixWallGranServo::init_film()
@@ -201,9 +201,6 @@ void FixWallGranServo::init_film()
   if (!bounded)
     error->all(FLERR, "{}: a film needs 'bounds LO1 HI1 LO2 HI2' (its area gives its mass and "
                "particles beyond it pass it by)", STYLE);
-  if (mode[axis] == SERVO)
-    error->all(FLERR, "{}: a film has no servo (its normal force is the difference of its two "
-               "faces' forces); use free or velocity", STYLE);
   mass = density * 2.0 * half_thick * (bhi[0] - blo[0]) * (bhi[1] - blo[1]);
 }
 
