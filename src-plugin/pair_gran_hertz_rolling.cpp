@@ -47,8 +47,7 @@ PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
     cand_lastcall(-1), cskin(0.0), cand_lim2(0.0)
 {
   kernel_choice = KERNEL_AUTO;
-  simd_avx2 = false;
-  simd_flag = 0;
+  simd_avx2 = 0;
   simd_logged = -1;
   contact_skin = 0.25;
   single_enable = 1;
@@ -330,15 +329,14 @@ void PairGranHertzRolling::choose_kernel()
   if (kernel_choice == KERNEL_AVX2 && !have)
     error->all(FLERR, "{}: kernel avx2 is not available ({}); use kernel auto or baseline", STYLE,
                why);
-  simd_avx2 = have && kernel_choice != KERNEL_BASELINE;
-  simd_flag = simd_avx2 ? 1 : 0;
-  if (simd_flag != simd_logged && comm->me == 0)
+  simd_avx2 = (have && kernel_choice != KERNEL_BASELINE) ? 1 : 0;
+  if (simd_avx2 != simd_logged && comm->me == 0)
     utils::logmesg(lmp, "{}: batch kernel {} (kernel {}{}{})\n", STYLE,
                    simd_avx2 ? "avx2, 4 contacts per vector" : "baseline x86-64, 2 contacts per vector",
                    kernel_choice == KERNEL_AUTO ? "auto" : kernel_choice == KERNEL_AVX2 ? "avx2" : "baseline",
                    (!have && kernel_choice == KERNEL_AUTO) ? ": " : "",
                    (!have && kernel_choice == KERNEL_AUTO) ? why : "");
-  simd_logged = simd_flag;
+  simd_logged = simd_avx2;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -1251,7 +1249,7 @@ double PairGranHertzRolling::memory_usage()
 void *PairGranHertzRolling::extract(const char *str, int &dim)
 {
   dim = 0;
-  if (strcmp(str, "kernel_avx2") == 0) return (void *) &simd_flag;    // 1: the AVX2 build runs
+  if (strcmp(str, "kernel_avx2") == 0) return (void *) &simd_avx2;    // 1: the AVX2 build runs
   dim = 1;
   if (strcmp(str, "E") == 0) return (void *) Emod;
   if (strcmp(str, "nu") == 0) return (void *) poiss;

@@ -143,12 +143,11 @@ class PairGranHertzRolling : public Pair {
   TBAGS_TARGET_AVX2 void eval_avx2(const tbags::contact::Params *puni);
   template <int ROLL, bool UPDATE, bool SB, bool UNI>
   inline void eval_body(const tbags::contact::Params *puni);
-  // the batch law's build: keyword 'kernel auto|avx2|baseline'; simd_avx2 is the one init_style
-  // chose (and logged), simd_flag the same as an int for extract("kernel_avx2")
+  // the batch law's build: keyword 'kernel auto|avx2|baseline'; simd_avx2 (1: AVX2, 0: baseline)
+  // is the one init_style chose and logged, an int so that extract("kernel_avx2") can give it
   enum { KERNEL_AUTO = 0, KERNEL_AVX2 = 1, KERNEL_BASELINE = 2 };
   int kernel_choice;
-  bool simd_avx2;
-  int simd_flag;
+  int simd_avx2;
   int simd_logged;              // the kernel last logged (-1: none yet)
   double contact_skin;          // keyword 'contact_skin f': candidate skin, fraction of the neighbor skin
   const tbags::contact::Params *uniform_params() const;
