@@ -177,12 +177,14 @@ def main(argv=None):
         paths = [r.path for r in cyclic_runs]
         out = overlay_dir(paths, args) if len(paths) > 1 else run_outdir(paths[0], args, False)
         written, text = cyclic.write(cyclic_runs, out, args.format, args.dpi)
+        # a stack's section follows the cyclic report that cyclic.write() has written
         for run in cyclic_runs:
             if isinstance(run, stack.StackRun):
                 more, section = stack.write(run, out, args.format, args.dpi)
                 written += more
                 text += section
-        (out / "report.md").write_text(text)
+                with open(out / "report.md", "a") as fh:
+                    fh.write(section)
         print(text)
         for path in written:
             print("wrote %s" % path)
