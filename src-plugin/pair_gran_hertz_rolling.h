@@ -8,27 +8,11 @@
 
 #include "atom.h"
 #include "pair.h"
-#include "law/contact_law.h"
+#include "law/contact_batch.h"
+#include "simd_target.h"
 
 #include <memory>
 #include <vector>
-
-// the batch kernel is also built for AVX2 and picked at run time (GCC and Clang on x86-64)
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__AVX2__) && !defined(TBAGS_NO_AVX2_CLONE)
-#define TBAGS_HAVE_AVX2_CLONE 1
-#define TBAGS_TARGET_AVX2 __attribute__((target("avx2")))
-#else
-#define TBAGS_TARGET_AVX2
-#endif
-
-// the scatter pass without GCC's SLP vectorizer, whose shuffles cost more than they saved (it
-// came with the packed atom records; the two took the benchmark from 358 to 314 instructions per
-// contact-step); the optimize attribute is GCC's own, other compilers get noinline only
-#if defined(__GNUC__) && !defined(__clang__)
-#define TBAGS_NOINLINE_NO_SLP __attribute__((noinline, optimize("no-tree-slp-vectorize")))
-#else
-#define TBAGS_NOINLINE_NO_SLP __attribute__((noinline))
-#endif
 
 namespace LAMMPS_NS {
 
@@ -62,21 +46,9 @@ class PairGranHertzRolling : public Pair {
   int rolling_model() const { return rolling; }
   bool damping_limited() const { return limit_damping; }
 
-  // Contacts gathered from the neighbor list in structure-of-arrays form (one row per value,
-  // one column per contact), so the law runs over them in SIMD lanes, then scattered back in
-  // neighbor-list order (forces sum in the same order as a plain loop).
-  struct alignas(64) Batch {
-    static constexpr int N = 32;
-    int i[N], j[N];
-    double *hist[N];
-    const tbags::contact::Params *p[N];
-    double dx[3][N], radi[N], radj[N], mi[N], mj[N], factor[N];    // m < 0: frozen
-    double vr[3][N], wi[3][N], wj[3][N], h[6][N];
-    double f[3][N], ti[3][N], tj[3][N];
-    // from the law's normal loop to its tangential and rolling loops
-    double n[3][N], vt[3][N], a[N], sqma[N], fn[N], delta[N], reff[N];
-    double meff[N], fne[N], vnnr[N];    // from the normal loop to the damping
-  };
+  // the touching pairs, gathered for the batch law (law/contact_batch.h)
+  using Batch = tbags::contact::Batch;
+  static constexpr const char *STYLE = "Pair style gran/hertz/rolling";
 
  protected:
   int rolling;            // tbags::contact::Rolling
@@ -137,12 +109,14 @@ class PairGranHertzRolling : public Pair {
 
   void allocate();
   void choose_kernel();
-  template <bool SB> void eval_rolling(bool update_history);    // eval() for the rolling model
-  template <int ROLL, bool UPDATE, bool SB> void eval();
-  template <int ROLL, bool UPDATE, bool SB, bool UNI>
-  TBAGS_TARGET_AVX2 void eval_avx2(const tbags::contact::Params *puni);
-  template <int ROLL, bool UPDATE, bool SB, bool UNI>
-  inline void eval_body(const tbags::contact::Params *puni);
+  // compute() in pair_gran_hertz_rolling_kernel.cpp: eval() for the rolling model, for the
+  // constants (one set or per type pair) and the build (AVX2 or baseline), then walk_pairs()
+  template <bool SPECIAL> void eval_rolling(bool update_history);
+  template <int ROLL, bool UPDATE, bool SPECIAL> void eval();
+  template <int ROLL, bool UPDATE, bool SPECIAL, bool SAME>
+  TBAGS_TARGET_AVX2 void walk_pairs_avx2(const tbags::contact::Params *same);
+  template <int ROLL, bool UPDATE, bool SPECIAL, bool SAME>
+  inline void walk_pairs(const tbags::contact::Params *same);
   // the batch law's build: keyword 'kernel auto|avx2|baseline'; simd_avx2 (1: AVX2, 0: baseline)
   // is the one init_style chose and logged, an int so that extract("kernel_avx2") can give it
   enum { KERNEL_AUTO = 0, KERNEL_AVX2 = 1, KERNEL_BASELINE = 2 };
@@ -161,9 +135,9 @@ class PairGranHertzRolling : public Pair {
     const double *rmass = atom->rmass;
     c.radi = atom->radius[i];
     c.radj = atom->radius[j];
-    tbags::contact::effective(rmass[i], rmass[j], c.radi, c.radj, c.meff, c.reff);
-    if (atom->mask[i] & freeze_group_bit) c.meff = rmass[j];
-    if (atom->mask[j] & freeze_group_bit) c.meff = rmass[i];
+    const double mi = (atom->mask[i] & freeze_group_bit) ? -rmass[i] : rmass[i];
+    const double mj = (atom->mask[j] & freeze_group_bit) ? -rmass[j] : rmass[j];
+    tbags::contact::effective_frozen(mi, mj, c.radi, c.radj, c.meff, c.reff);
     c.dx = dx;
     c.rsq = rsq;
     c.radsum = radsum;

@@ -120,6 +120,17 @@ TBAGS_INLINE void effective(double mi, double mj, double radi, double radj, doub
   reff = radi * radj * msum * q;
 }
 
+// The same with the frozen-particle rule: a mass given negative marks a particle of fix freeze
+// (infinite mass), and m* is then the other particle's mass. Used by the pair's single() and batch.
+TBAGS_INLINE void effective_frozen(double mi_signed, double mj_signed, double radi, double radj,
+                                   double &meff, double &reff)
+{
+  const double mi = std::fabs(mi_signed), mj = std::fabs(mj_signed);
+  effective(mi, mj, radi, radj, meff, reff);
+  meff = mi_signed < 0.0 ? mj : meff;
+  meff = mj_signed < 0.0 ? mi : meff;
+}
+
 // One contact as values, branch-free (conditions are selects), so that the pair style can run
 // it over a batch of contacts in SIMD lanes; every other entry point calls it too.
 // In: dx = x_i - x_j (wall: as Contact), vr = v_i - v_j, angular velocities wi, wj.

@@ -1,0 +1,150 @@
+// Unit tests of law/contact_batch.h: the batch law gives, bit for bit, what contact_lane()
+// gives for each of its contacts, for every rolling model and every variant of the batch
+// (history update, one set of constants or one per contact, special-bond factors, fast path).
+#include "law/contact_batch.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+#include <random>
+
+using namespace tbags::contact;
+using tbags::vec::V3;
+
+namespace {
+
+// Two materials (sand and a yarn-like polymer), rolling on in the first and both ways for the
+// second when mur2 is 0; limit_damping as given.
+struct Materials {
+  Params p[2];
+  Materials(int roll, double mur2, bool clip)
+  {
+    p[0] = make_params(mix_E(1.8e9, 0.1, 1.8e9, 0.1), mix_G(1.8e9, 0.1, 1.8e9, 0.1), 0.2, 0.31, 0.05,
+                       roll, clip);
+    p[1] = make_params(mix_E(1.8e9, 0.1, 0.9e9, 0.3), mix_G(1.8e9, 0.1, 0.9e9, 0.3), 0.6, 0.5, mur2,
+                       roll, clip);
+  }
+};
+
+// A random touching contact in column l (overlap up to 2 % of the radius sum, speeds up to
+// 1 m/s, spins up to 300 rad/s, a history of the tangential and rolling springs that leans out
+// of the tangent plane by tilt), masses negative (frozen) now and then.
+void random_contact(Batch &b, int l, std::mt19937_64 &g, const Params *p, double tilt, bool frozen)
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.0, 1.0);
+  const double ri = 2e-3 + 1e-3 * pos(g), rj = 2e-3 + 1e-3 * pos(g);
+  V3 n{u(g), u(g), u(g)};
+  n = (1.0 / std::sqrt(tbags::vec::dot(n, n))) * n;
+  const double r = (ri + rj) * (1.0 - 0.02 * pos(g)) + 1e-9;
+  b.i[l] = l;
+  b.j[l] = l + 100;
+  b.hist[l] = nullptr;
+  b.p[l] = p;
+  b.dx[0][l] = r * n.x;
+  b.dx[1][l] = r * n.y;
+  b.dx[2][l] = r * n.z;
+  b.radi[l] = ri;
+  b.radj[l] = rj;
+  b.mi[l] = 1e-4 * (0.5 + pos(g)) * ((frozen && l % 7 == 3) ? -1.0 : 1.0);
+  b.mj[l] = 1e-4 * (0.5 + pos(g)) * ((frozen && l % 5 == 1) ? -1.0 : 1.0);
+  b.factor[l] = (l % 3 == 0) ? 0.5 : 1.0;
+  for (int k = 0; k < 3; k++) {
+    b.vr[k][l] = u(g);
+    b.wi[k][l] = 300.0 * u(g);
+    b.wj[k][l] = 300.0 * u(g);
+  }
+  // history: in the tangent plane plus tilt times its length along n (sliding or sticking)
+  for (int s = 0; s < 2; s++) {
+    V3 h{1e-5 * u(g), 1e-5 * u(g), 1e-5 * u(g)};
+    h = h - tbags::vec::dot(h, n) * n;
+    h = h + (tilt * std::sqrt(tbags::vec::dot(h, h))) * n;
+    b.h[3 * s][l] = h.x;
+    b.h[3 * s + 1][l] = h.y;
+    b.h[3 * s + 2][l] = h.z;
+  }
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The batch of n contacts against contact_lane() per contact; returns batch_law's redo flag.
+template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST>
+bool check_batch(const Materials &m, int n, double tilt, bool clip, unsigned seed)
+{
+  auto b = std::make_unique<Batch>();
+  std::mt19937_64 g(seed);
+  const Params *same = SAME ? &m.p[0] : nullptr;
+  for (int l = 0; l < n; l++)
+    random_contact(*b, l, g, SAME ? same : &m.p[l % 2], tilt, true);
+  const auto in = std::make_unique<Batch>(*b);
+  const double dt = 1e-6;
+  const bool redo = batch_law<ROLL, UPDATE, SAME, SPECIAL, FAST>(*b, n, dt, clip, same);
+  if (FAST && redo) return true;
+  for (int l = 0; l < n; l++) {
+    const Batch &a = *in;
+    const Params &p = SAME ? *same : *a.p[l];
+    // the frozen-particle rule written out: a frozen particle's partner's mass is m*
+    const double mi = std::fabs(a.mi[l]), mj = std::fabs(a.mj[l]);
+    double meff, reff;
+    effective(mi, mj, a.radi[l], a.radj[l], meff, reff);
+    if (a.mi[l] < 0.0) meff = mj;
+    if (a.mj[l] < 0.0) meff = mi;
+    const V3 dx = row3(a.dx, l);
+    const double rsq = dx.x * dx.x + dx.y * dx.y + dx.z * dx.z;
+    V3 ht = row3(a.h, l), hr = row3(a.h + 3, l);
+    LaneOut o;
+    contact_lane<ROLL, UPDATE, SAME>(p, clip, dx, rsq, a.radi[l] + a.radj[l], reff, meff,
+                                     a.radi[l], a.radj[l], row3(a.vr, l), row3(a.wi, l),
+                                     row3(a.wj, l), false, dt, ht, hr, o);
+    const double fl = SPECIAL ? a.factor[l] : 1.0;
+    const V3 want[5] = {fl * o.f, fl * o.ti, fl * o.tj, ht, hr};
+    const V3 got[5] = {row3(b->f, l), row3(b->ti, l), row3(b->tj, l), row3(b->h, l),
+                       row3(b->h + 3, l)};
+    const char *what[5] = {"f", "ti", "tj", "tangential history", "rolling history"};
+    for (int k = 0; k < (ROLL == ROLLING_EPSD ? 5 : 4); k++) {
+      EXPECT_TRUE(same_bits(got[k].x, want[k].x) && same_bits(got[k].y, want[k].y) &&
+                  same_bits(got[k].z, want[k].z))
+          << what[k] << " of contact " << l << ": batch (" << got[k].x << ", " << got[k].y << ", "
+          << got[k].z << "), contact_lane (" << want[k].x << ", " << want[k].y << ", " << want[k].z
+          << ")";
+    }
+  }
+  return redo;
+}
+
+template <int ROLL> void check_all_variants(double mur2, bool clip)
+{
+  const Materials m(ROLL, mur2, clip);
+  // 29 contacts (a partial last vector); histories tilted out of the plane by 1e-2 (the exact
+  // rotation; the fast path reports it), 1e-4 (its series) and 1e-9 (no rotation where the
+  // spring force is small)
+  const double tilts[3] = {1e-2, 1e-4, 1e-9};
+  for (double tilt : tilts) {
+    check_batch<ROLL, true, false, false, false>(m, 29, tilt, clip, 1);
+    check_batch<ROLL, true, false, true, false>(m, 29, tilt, clip, 2);
+    check_batch<ROLL, false, false, false, false>(m, 29, tilt, clip, 3);
+    check_batch<ROLL, false, false, true, false>(m, 29, tilt, clip, 4);
+    check_batch<ROLL, true, false, true, true>(m, 29, tilt, clip, 6);
+    check_batch<ROLL, false, false, false, true>(m, 29, tilt, clip, 8);
+    if (ROLL == ROLLING_NONE || mur2 > 0.0) {    // one set for all contacts: rolling on for all
+      check_batch<ROLL, true, true, false, false>(m, 29, tilt, clip, 5);
+      check_batch<ROLL, true, true, false, true>(m, 29, tilt, clip, 7);
+    }
+  }
+}
+}    // namespace
+
+TEST(Batch, EpsdEqualsContactLane) { check_all_variants<ROLLING_EPSD>(0.1, false); }
+TEST(Batch, EpsdRollingOffForOneMaterial) { check_all_variants<ROLLING_EPSD>(0.0, false); }
+TEST(Batch, CdtEqualsContactLane) { check_all_variants<ROLLING_CDT>(0.1, false); }
+TEST(Batch, NoneEqualsContactLane) { check_all_variants<ROLLING_NONE>(0.0, false); }
+TEST(Batch, LimitDampingEqualsContactLane) { check_all_variants<ROLLING_EPSD>(0.1, true); }
+
+// The fast path: a tilt the series cannot take must be reported (the caller then redoes the
+// batch without it); a small one must not, and then gives the law's bits (checked above).
+TEST(Batch, FastPathReportsLargeTilt)
+{
+  const Materials m(ROLLING_EPSD, 0.1, false);
+  EXPECT_TRUE((check_batch<ROLLING_EPSD, true, false, false, true>(m, 29, 1e-2, false, 9)));
+  EXPECT_FALSE((check_batch<ROLLING_EPSD, true, false, false, true>(m, 29, 1e-9, false, 10)));
+}
