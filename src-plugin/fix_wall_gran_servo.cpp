@@ -506,8 +506,7 @@ void FixWallGranServo::post_force(int)
     double dx[3] = {0.0, 0.0, 0.0};
     dx[axis] = face == 0 ? h : -h;
     c.dx = dx;
-    c.rsq = h * h;
-    c.radsum = c.reff = c.radi = radius[i];
+    c.reff = c.radi = radius[i];
     c.meff = rmass[i];
     c.vi = v[i];
     c.wi = omega[i];

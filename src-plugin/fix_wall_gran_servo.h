@@ -9,7 +9,7 @@
 #define LMP_FIX_WALL_GRAN_SERVO_H
 
 #include "fix.h"
-#include "law/contact_law.h"
+#include "law/contact_chain.h"
 #include "law/servo.h"
 
 #include <cmath>

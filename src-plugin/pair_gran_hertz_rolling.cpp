@@ -2,7 +2,7 @@
    T-BAGS DEM toolkit (tbags plugin for LAMMPS)
    pair_style gran/hertz/rolling: Hertz-Mindlin contact with restitution damping, a friction
    matrix and rolling resistance. The physics is in law/contact_law.h, its batch form in
-   law/contact_batch.h; compute() is in pair_gran_hertz_rolling_kernel.cpp. This file: the
+   law/contact_chain.h; compute() is in pair_gran_hertz_rolling_kernel.cpp. This file: the
    style's settings, coefficients, init, single(), restart and data files.
 ------------------------------------------------------------------------- */
 
@@ -410,7 +410,7 @@ double PairGranHertzRolling::single(int i, int j, int itype, int jtype, double r
   double **x = atom->x;
   double dx[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
   law::Contact c;
-  set_contact(i, j, dx, rsq, radsum, c);
+  set_contact(i, j, dx, c);
   c.wall = false;
   c.dt = update->dt;
   law::Result o;

@@ -8,7 +8,7 @@
 
 #include "atom.h"
 #include "pair.h"
-#include "law/contact_batch.h"
+#include "law/contact_chain.h"
 #include "simd_target.h"
 
 #include <memory>
@@ -46,7 +46,7 @@ class PairGranHertzRolling : public Pair {
   int rolling_model() const { return rolling; }
   bool damping_limited() const { return limit_damping; }
 
-  // the touching pairs, gathered for the batch law (law/contact_batch.h)
+  // the touching pairs, gathered for the batch law (law/contact_chain.h)
   using Batch = tbags::contact::Batch;
   static constexpr const char *STYLE = "Pair style gran/hertz/rolling";
 
@@ -129,8 +129,7 @@ class PairGranHertzRolling : public Pair {
   TBAGS_NOINLINE_NO_SLP void batch_scatter(int n);
   // geometry and kinematics of the pair i-j for the law (dx = x_i - x_j, already computed);
   // m* is the other particle's mass when one of them is frozen (fix freeze)
-  void set_contact(int i, int j, double *dx, double rsq, double radsum,
-                   tbags::contact::Contact &c) const
+  void set_contact(int i, int j, double *dx, tbags::contact::Contact &c) const
   {
     const double *rmass = atom->rmass;
     c.radi = atom->radius[i];
@@ -139,8 +138,6 @@ class PairGranHertzRolling : public Pair {
     const double mj = (atom->mask[j] & freeze_group_bit) ? -rmass[j] : rmass[j];
     tbags::contact::effective_frozen(mi, mj, c.radi, c.radj, c.meff, c.reff);
     c.dx = dx;
-    c.rsq = rsq;
-    c.radsum = radsum;
     c.vi = atom->v[i];
     c.vj = atom->v[j];
     c.wi = atom->omega[i];

@@ -5,7 +5,7 @@
              atoms into two aligned records per atom; walk_pairs(): the candidate list (or the
              whole neighbor list, rebuilding the candidate list), the touch flags and histories
              of pairs that separate, and the touching pairs gathered into a Batch
-     pass 2  the law over each full Batch (law/contact_batch.h), its history rows moved in and
+     pass 2  the law over each full Batch (law/contact_chain.h), its history rows moved in and
              out by pair_gran_hertz_rolling_moves.h
      pass 3  forces and torques added to the atoms in neighbor-list order (scatter)
    Built for the baseline and AVX2 (simd_target.h); both give the same bits.

@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    T-BAGS DEM toolkit (tbags plugin for LAMMPS)
    pair_style gran/hertz/rolling, kernel part: data movement between the batch's rows
-   (law/contact_batch.h) and per-contact or per-atom arrays. Values are only moved, never
+   (law/contact_chain.h) and per-contact or per-atom arrays. Values are only moved, never
    combined, except the force sums of the scatter, which add in the baseline's order.
    The AVX2 versions carry __attribute__((target("avx2"))) and are chosen at run time
    (PairGranHertzRolling::choose_kernel()); included by pair_gran_hertz_rolling_kernel.cpp only.
@@ -10,7 +10,7 @@
 #ifndef TBAGS_PAIR_GRAN_HERTZ_ROLLING_MOVES_H
 #define TBAGS_PAIR_GRAN_HERTZ_ROLLING_MOVES_H
 
-#include "law/contact_batch.h"
+#include "law/contact_chain.h"
 #include "simd_target.h"
 
 #include <cstddef>

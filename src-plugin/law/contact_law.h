@@ -1,6 +1,8 @@
 /* T-BAGS DEM toolkit: the Hertz-Mindlin contact law with restitution damping, Coulomb friction
-   and rolling resistance. Pure header, no LAMMPS types: used by pair gran/hertz/rolling and
-   fix wall/gran/servo (a plate is a particle of infinite radius and mass), unit-tested alone.
+   and rolling resistance. Pure header, no LAMMPS types: the constants and the stages of the
+   law, each a branch-free function of values (conditions are selects) so that a contact can run
+   in a SIMD lane; contact_chain.h chains them, once, for pair gran/hertz/rolling and fix
+   wall/gran/servo (a plate is a particle of infinite radius and mass). Unit-tested alone.
 
    Per contact (overlap d = r_i + r_j - |x_i - x_j| > 0, unit normal n from j to i):
      a    = sqrt(R* d)                         contact radius, R* = R_i R_j / (R_i + R_j)
@@ -84,8 +86,6 @@ inline Params make_params(double Estar, double Gstar, double e, double mu, doubl
 // Geometry and kinematics of one contact, as pointers into the caller's arrays.
 struct Contact {
   const double *dx;             // x_i - x_j (for a wall: from the wall's contact point to x_i)
-  double rsq;                   // |dx|^2
-  double radsum;                // r_i + r_j (wall: r_i)
   double reff;                  // R*
   double meff;                  // m*
   double radi, radj;            // radii for the surface velocity (wall: radj = 0)
@@ -131,18 +131,16 @@ TBAGS_INLINE void effective_frozen(double mi_signed, double mj_signed, double ra
   meff = mj_signed < 0.0 ? mi : meff;
 }
 
-// One contact as values, branch-free (conditions are selects), so that the pair style can run
-// it over a batch of contacts in SIMD lanes; every other entry point calls it too.
-// In: dx = x_i - x_j (wall: as Contact), vr = v_i - v_j, angular velocities wi, wj.
-// In/out: ht (tangential) and hr (rolling, EPSD) history. UPDATE: integrate the history
-// (rotate onto the tangent plane, add the increment); the Coulomb reset applies regardless.
-// clip: p.limit_damping; rolling acts where p.mur > 0 (make_params: p.rolling is then ROLL).
+// The stages' outputs for one contact (contact_geometry() and tangential_force() fill them).
+// Everywhere below: dx = x_i - x_j (a plate: as Contact), vr = v_i - v_j, angular velocities
+// wi, wj; ht (tangential) and hr (rolling, EPSD) the history; clip: p.limit_damping; rolling
+// acts where p.mur > 0 (make_params: p.rolling is then the model).
 struct LaneOut {
   vec::V3 f, ti, tj, fs, fr;
   double fn, fne, delta, r;
 };
 
-// Normal force of contact_lane: the Hertz force fne plus restitution damping against the normal
+// Normal force (stage 2): the Hertz force fne plus restitution damping against the normal
 // relative velocity vnnr (n . (v_i - v_j)), clipped at zero with clip; sqma = sqrt(m* a).
 TBAGS_INLINE double normal_force(const Params &p, bool clip, double meff, double a, double fne,
                                  double vnnr, double &sqma)
@@ -152,7 +150,7 @@ TBAGS_INLINE double normal_force(const Params &p, bool clip, double meff, double
   return (clip & (fn < 0.0)) ? 0.0 : fn;
 }
 
-// Geometry of contact_lane: unit normal n, normal and tangential relative velocity vnnr and vtr
+// Geometry (stage 1): unit normal n, normal and tangential relative velocity vnnr and vtr
 // at the contact point, contact radius a and the Hertz force (o.fne, o.delta, o.r set).
 TBAGS_INLINE void contact_geometry(const Params &p, const vec::V3 &dx, double rsq, double radsum,
                                    double reff, double radi, double radj, const vec::V3 &vr,
@@ -177,19 +175,6 @@ TBAGS_INLINE void contact_geometry(const Params &p, const vec::V3 &dx, double rs
   o.r = r;
 }
 
-// Geometry and normal part of contact_lane (below): unit normal n, tangential relative velocity
-// vtr at the contact point, contact radius a, sqrt(m* a) and the normal force (o.fn, o.fne,
-// o.delta, o.r set).
-TBAGS_INLINE void contact_lane_n(const Params &p, bool clip, const vec::V3 &dx, double rsq,
-                                 double radsum, double reff, double meff, double radi, double radj,
-                                 const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj,
-                                 LaneOut &o, vec::V3 &n, vec::V3 &vtr, double &a, double &sqma)
-{
-  double vnnr;
-  contact_geometry(p, dx, rsq, radsum, reff, radi, radj, vr, wi, wj, o, n, vnnr, vtr, a);
-  o.fn = normal_force(p, clip, meff, a, o.fne, vnnr, sqma);
-}
-
 // A spring history h (stiffness k, force cap crit) rotated onto the tangent plane of the unit
 // normal n when it has a normal part (relative to the cap, as stock): onto_plane(), or with
 // FAST only its series; big (FAST): the tilt was too large for the series, the result is then
@@ -206,7 +191,7 @@ TBAGS_INLINE vec::V3 rotate_history(const vec::V3 &h, const vec::V3 &n, double k
   return select(rot, hp, h);
 }
 
-// Tangential spring history of contact_lane (UPDATE): rotated onto the tangent plane and
+// Tangential spring history (stage 3, when the history is integrated): rotated onto the tangent plane and
 // integrated. FAST (the pair's SIMD loop): the rotation only by the series; returns true when
 // the tilt is too large for it (rare): the caller must then redo the contact without FAST,
 // from the old history. When it returns false, ht is bit for bit the full law's.
@@ -219,7 +204,7 @@ TBAGS_INLINE bool tangential_history(const Params &p, const vec::V3 &n, const ve
   return FAST && big;
 }
 
-// Tangential force of contact_lane from the (integrated) history: incremental Mindlin spring +
+// Tangential force (stage 4) from the (integrated) history: incremental Mindlin spring +
 // damping, Coulomb cap (the history reset on sliding); o.f, o.ti, o.tj (without rolling), o.fs;
 // o.fr zero.
 TBAGS_INLINE void tangential_force(const Params &p, const vec::V3 &n, const vec::V3 &vtr,
@@ -250,33 +235,7 @@ TBAGS_INLINE void tangential_force(const Params &p, const vec::V3 &n, const vec:
   o.fs = fs;
 }
 
-// Tangential part of contact_lane, from contact_lane_n()'s results: the history (UPDATE) and
-// the force; FAST as tangential_history().
-template <bool UPDATE, bool FAST = false>
-TBAGS_INLINE bool contact_lane_t(const Params &p, const vec::V3 &n, const vec::V3 &vtr, double a,
-                                 double sqma, double fn, double delta, double radi, double radj,
-                                 bool wall, double dt, vec::V3 &ht, LaneOut &o)
-{
-  const bool redo = UPDATE && tangential_history<FAST>(p, n, vtr, a, fn, dt, ht);
-  tangential_force(p, n, vtr, a, sqma, fn, delta, radi, radj, wall, ht, o);
-  return redo;
-}
-
-// Normal and tangential part of contact_lane: o without rolling (o.fr zero), and what the
-// rolling part needs: the unit normal n and the contact radius a (|F_n| is fabs(o.fn)).
-template <bool UPDATE>
-TBAGS_INLINE void contact_lane_nt(const Params &p, bool clip, const vec::V3 &dx, double rsq,
-                                  double radsum, double reff, double meff, double radi, double radj,
-                                  const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
-                                  double dt, vec::V3 &ht, LaneOut &o, vec::V3 &n, double &a)
-{
-  vec::V3 vtr;
-  double sqma;
-  contact_lane_n(p, clip, dx, rsq, radsum, reff, meff, radi, radj, vr, wi, wj, o, n, vtr, a, sqma);
-  contact_lane_t<UPDATE>(p, n, vtr, a, sqma, o.fn, o.delta, radi, radj, wall, dt, ht, o);
-}
-
-// EPSD rolling history of contact_lane (UPDATE): rotated onto the tangent plane and integrated
+// EPSD rolling history (stage 5, when the history is integrated): rotated onto the tangent plane and integrated
 // with the rolling velocity R* (w_i - w_j) x n where rolling acts (p.mur > 0; ALLON: known), else
 // left as it was. FAST: as tangential_history() (returns whether the exact rotation was needed
 // where rolling acts).
@@ -294,7 +253,7 @@ TBAGS_INLINE bool rolling_history(const Params &p, const vec::V3 &n, double a, d
   return FAST && (on & big);
 }
 
-// Rolling resistance of contact_lane (ROLL not ROLLING_NONE) from n, a, fncrit = |F_n| and, for
+// Rolling resistance (stage 6; ROLL not ROLLING_NONE) from n, a, fncrit = |F_n| and, for
 // EPSD, the integrated history hr (rolling_history()): the rolling pseudo-force fr and the
 // torque troll = R* n x fr (i gets +troll, j -troll); EPSD: the cap |fr| <= mu_r |F_n| (hr
 // rescaled to it); CDT: |fr| = mu_r |F_n| against the rolling velocity. on: rolling acts
@@ -324,78 +283,6 @@ TBAGS_INLINE void rolling_force(const Params &p, const vec::V3 &n, double a, dou
   }
   fr = select(on, fr, V3{0.0, 0.0, 0.0});
   troll = reff * cross(n, fr);
-}
-
-// Rolling part of contact_lane: the history (EPSD, UPDATE), then the force; FAST as
-// rolling_history().
-template <int ROLL, bool UPDATE, bool ALLON = false, bool FAST = false>
-TBAGS_INLINE bool contact_lane_roll(const Params &p, const vec::V3 &n, double a, double fncrit,
-                                    double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
-                                    vec::V3 &hr, vec::V3 &fr, vec::V3 &troll, bool &on)
-{
-  const bool redo = ROLL == ROLLING_EPSD && UPDATE &&
-      rolling_history<ALLON, FAST>(p, n, a, fncrit, reff, wi, wj, dt, hr);
-  rolling_force<ROLL, ALLON>(p, n, a, fncrit, reff, wi, wj, hr, fr, troll, on);
-  return redo;
-}
-
-// ALLON: the caller knows p.mur > 0 for this contact (rolling acts; no per-lane test)
-template <int ROLL, bool UPDATE, bool ALLON = false>
-TBAGS_INLINE void contact_lane(const Params &p, bool clip, const vec::V3 &dx, double rsq, double radsum,
-                               double reff, double meff, double radi, double radj,
-                               const vec::V3 &vr, const vec::V3 &wi, const vec::V3 &wj, bool wall,
-                               double dt, vec::V3 &ht, vec::V3 &hr, LaneOut &o)
-{
-  using namespace vec;
-  V3 n;
-  double a;
-  contact_lane_nt<UPDATE>(p, clip, dx, rsq, radsum, reff, meff, radi, radj, vr, wi, wj, wall, dt,
-                          ht, o, n, a);
-  if (ROLL != ROLLING_NONE) {
-    V3 troll;
-    bool on;
-    contact_lane_roll<ROLL, UPDATE, ALLON>(p, n, a, std::fabs(o.fn), reff, wi, wj, dt, hr, o.fr,
-                                           troll, on);
-    o.ti = select(on, o.ti + troll, o.ti);
-    o.tj = select(on, o.tj - troll, o.tj);
-  }
-}
-
-// One contact, with the rolling model fixed at compile time. hist: 3 (or 6 for EPSD) doubles,
-// integrated when update is true.
-template <int ROLL>
-TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, bool update, Result &o)
-{
-  using namespace vec;
-  const V3 vr = load3(c.vi) - load3(c.vj);
-  V3 ht = load3(hist);
-  V3 hr = ROLL == ROLLING_EPSD ? load3(hist + 3) : V3{0.0, 0.0, 0.0};
-  LaneOut lo;
-  if (update)
-    contact_lane<ROLL, true>(p, p.limit_damping, load3(c.dx), c.rsq, c.radsum, c.reff, c.meff, c.radi, c.radj, vr,
-                             load3(c.wi), load3(c.wj), c.wall, c.dt, ht, hr, lo);
-  else
-    contact_lane<ROLL, false>(p, p.limit_damping, load3(c.dx), c.rsq, c.radsum, c.reff, c.meff, c.radi, c.radj, vr,
-                              load3(c.wi), load3(c.wj), c.wall, c.dt, ht, hr, lo);
-  store3(ht, hist);
-  if (ROLL == ROLLING_EPSD) store3(hr, hist + 3);
-  store3(lo.f, o.f);
-  store3(lo.ti, o.ti);
-  store3(lo.tj, o.tj);
-  store3(lo.fs, o.fs);
-  store3(lo.fr, o.fr);
-  o.fn = lo.fn;
-  o.fne = lo.fne;
-  o.delta = lo.delta;
-  o.r = lo.r;
-}
-
-// One contact, rolling model from the parameters (tests, the plate fix, single()).
-inline void compute(const Params &p, const Contact &c, double *hist, bool update, Result &o)
-{
-  if (p.rolling == ROLLING_EPSD) compute_t<ROLLING_EPSD>(p, c, hist, update, o);
-  else if (p.rolling == ROLLING_CDT) compute_t<ROLLING_CDT>(p, c, hist, update, o);
-  else compute_t<ROLLING_NONE>(p, c, hist, update, o);
 }
 
 }    // namespace contact

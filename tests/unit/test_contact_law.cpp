@@ -1,5 +1,5 @@
 // Unit tests of law/contact_law.h against closed forms (no LAMMPS).
-#include "law/contact_law.h"
+#include "law/contact_chain.h"
 
 #include <gtest/gtest.h>
 
@@ -26,8 +26,6 @@ struct Pair2 {
     Contact k;
     for (int d = 0; d < 3; d++) dx[d] = xi[d] - xj[d];
     k.dx = dx;
-    k.rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-    k.radsum = ri + rj;
     k.reff = ri * rj / (ri + rj);
     k.meff = mi * mj / (mi + mj);
     k.radi = ri;
@@ -289,12 +287,25 @@ TEST(ContactLaw, FastPathIsTheFullLawOrSaysSo)
       {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, false},
       {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 1e-10}, {0.0, 0.0, 0.0}, false, true},
   };
+  // the tangential and rolling stages, the history integrated with or without the fast path
+  auto tangential = [&](bool fast, const Case &k, V3 &h, LaneOut &o) {
+    const bool redo = fast ? tangential_history<true>(p, n, k.vt, a, fn, 1e-6, h)
+                           : tangential_history<false>(p, n, k.vt, a, fn, 1e-6, h);
+    tangential_force(p, n, k.vt, a, sqma, fn, 1e-5, 2.5e-3, 2.5e-3, false, h, o);
+    return redo;
+  };
+  auto rolling = [&](bool fast, const Case &k, V3 &h, V3 &fr, V3 &tr) {
+    const bool redo = fast ? rolling_history<false, true>(p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, h)
+                           : rolling_history<false, false>(p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, h);
+    bool on;
+    rolling_force<ROLLING_EPSD>(p, n, a, fn, 1.25e-3, wi, k.wj, h, fr, tr, on);
+    return redo;
+  };
   for (const Case &k : cases) {
     V3 h1 = k.ht, h2 = k.ht;
     LaneOut o1, o2;
-    const bool redo = contact_lane_t<true, true>(p, n, k.vt, a, sqma, fn, 1e-5, 2.5e-3, 2.5e-3,
-                                                 false, 1e-6, h1, o1);
-    contact_lane_t<true>(p, n, k.vt, a, sqma, fn, 1e-5, 2.5e-3, 2.5e-3, false, 1e-6, h2, o2);
+    const bool redo = tangential(true, k, h1, o1);
+    tangential(false, k, h2, o2);
     EXPECT_EQ(redo, k.redo_t);
     if (!redo) {
       EXPECT_EQ(h1.x, h2.x);
@@ -303,10 +314,8 @@ TEST(ContactLaw, FastPathIsTheFullLawOrSaysSo)
       EXPECT_EQ(o1.ti.y, o2.ti.y);
     }
     V3 r1 = k.hr, r2 = k.hr, fr1, fr2, tr1, tr2;
-    bool on;
-    const bool redo_r = contact_lane_roll<ROLLING_EPSD, true, false, true>(
-        p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, r1, fr1, tr1, on);
-    contact_lane_roll<ROLLING_EPSD, true>(p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, r2, fr2, tr2, on);
+    const bool redo_r = rolling(true, k, r1, fr1, tr1);
+    rolling(false, k, r2, fr2, tr2);
     EXPECT_EQ(redo_r, k.redo_r);
     if (!redo_r) {
       EXPECT_EQ(r1.x, r2.x);
@@ -382,7 +391,7 @@ TEST(Wall, InfiniteRadiusAndMass)
   const double ri = 2.5e-3, d = 1e-5;
   double dx[3] = {0, 0, ri - d}, v[3] = {0.01, 0, 0}, z[3] = {0, 0, 0};
   Contact c;
-  c.dx = dx; c.rsq = dx[2] * dx[2]; c.radsum = ri; c.reff = ri; c.meff = 1e-4;
+  c.dx = dx; c.reff = ri; c.meff = 1e-4;
   c.radi = ri; c.radj = 0.0; c.vi = v; c.vj = z; c.wi = z; c.wj = z; c.wall = true; c.dt = 1e-6;
   double hist[6] = {0};
   Result o;
