@@ -247,7 +247,8 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
   double **firsthistory = fix_history->firstvalue;
 
   constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
-  auto flush = [&](int n) {
+  // not inlined into the walk: it would cost the walk registers (7 instructions per contact)
+  auto flush = [&](int n) __attribute__((noinline)) {
     hist_rows<NH>(b, n, simd_avx2);
     // the fast path; in the rare batch where a contact needs the full law, all again with it
     if (run_law<ROLL, UPDATE, SAME, SPECIAL, true>(b, n, update->dt, limit_damping, simd_avx2, same)) {

@@ -136,9 +136,13 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
     if (Lanes<W>::ONE) set_row3(b.fs, l, o.fs);
     const double fl = SPECIAL ? b.factor[l] : 1.0;
     set_row3(b.f, l, fl * o.f);
-    // with rolling, its loop adds its torque first, then applies the factor
-    set_row3(b.ti, l, ROLL == ROLLING_NONE ? fl * o.ti : o.ti);
-    set_row3(b.tj, l, ROLL == ROLLING_NONE ? fl * o.tj : o.tj);
+    if constexpr (ROLL == ROLLING_NONE) {
+      set_row3(b.ti, l, fl * o.ti);
+      set_row3(b.tj, l, fl * o.tj);
+    } else {    // the rolling loop adds its torque first, then applies the factor
+      set_row3(b.ti, l, o.ti);
+      set_row3(b.tj, l, o.tj);
+    }
   }
   if (ROLL == ROLLING_NONE) {
     if (Lanes<W>::ONE) set_row3(b.fr, 0, V3{0.0, 0.0, 0.0});
@@ -159,7 +163,8 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   TBAGS_PRAGMA_SIMD
   for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
-    V3 hr = ROLL == ROLLING_EPSD ? row3(b.h + 3, l) : V3{0.0, 0.0, 0.0};
+    V3 hr{0.0, 0.0, 0.0};
+    if constexpr (ROLL == ROLLING_EPSD) hr = row3(b.h + 3, l);
     V3 fr, troll;
     bool on;
     rolling_force<ROLL, SAME>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]), b.reff[l],
