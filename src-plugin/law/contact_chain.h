@@ -34,7 +34,7 @@ namespace contact {
 // history rows h (3, or 6 with EPSD).
 // Out: f (on i; j gets -f), torques ti and tj, h updated; for one contact also the normal
 // force fn, fne, delta, and fs, fr, r below. The rest carries values from one loop to the next.
-template <int W> struct alignas(64) Lanes {
+template <int W> struct alignas(W == 1 ? 8 : 64) Lanes {    // one contact: no stack realignment
   static constexpr int N = W;
   static constexpr bool ONE = W == 1;    // one contact: m* and R* given, the parts kept
   int i[N], j[N];
@@ -80,9 +80,10 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   using vec::V3;
   // 64 bits like the lanes: a 32-bit flag makes the vectoriser take 8 lanes (and spill)
   long long redo = 0;
+  const int nl = Lanes<W>::ONE ? 1 : n;    // one contact: a known trip count, no SIMD loop
   // loop 1: geometry and Hertz force (stage 1)
   TBAGS_PRAGMA_SIMD
-  for (int l = 0; l < n; l++) {
+  for (int l = 0; l < nl; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     double meff, reff;
     if (Lanes<W>::ONE) {
@@ -112,7 +113,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   // loop 2: normal damping (stage 2; its square root here, where the divider has time) and
   // tangential history (stage 3)
   TBAGS_PRAGMA_SIMD_OR_REDO
-  for (int l = 0; l < n; l++) {
+  for (int l = 0; l < nl; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     double sqma;
     const double fn = normal_force(p, clip, b.meff[l], b.a[l], b.fne[l], b.vnnr[l], sqma);
@@ -126,7 +127,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   }
   // loop 3: tangential force (stage 4; torques without rolling)
   TBAGS_PRAGMA_SIMD
-  for (int l = 0; l < n; l++) {
+  for (int l = 0; l < nl; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     V3 ht = row3(b.h, l);
     LaneOut o;
@@ -151,7 +152,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   // loop 4: rolling history (stage 5, EPSD)
   if (ROLL == ROLLING_EPSD && UPDATE) {
     TBAGS_PRAGMA_SIMD_OR_REDO
-    for (int l = 0; l < n; l++) {
+    for (int l = 0; l < nl; l++) {
       const Params &p = SAME ? *same : *b.p[l];
       V3 hr = row3(b.h + 3, l);
       redo |= rolling_history<SAME, FAST>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]),
@@ -161,7 +162,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   }
   // loop 5: rolling force and torque (stage 6)
   TBAGS_PRAGMA_SIMD
-  for (int l = 0; l < n; l++) {
+  for (int l = 0; l < nl; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     V3 hr{0.0, 0.0, 0.0};
     if constexpr (ROLL == ROLLING_EPSD) hr = row3(b.h + 3, l);
@@ -182,7 +183,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
 // One contact (the plate fix, the pair's single(), tests), rolling model fixed at compile
 // time: the chain over one lane. hist: 3 (or 6 for EPSD) doubles, integrated when update.
 template <int ROLL>
-inline void compute_t(const Params &p, const Contact &c, double *hist, bool update, Result &o)
+TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, bool update, Result &o)
 {
   using namespace vec;
   Lanes<1> b;
