@@ -109,13 +109,13 @@ class PairGranHertzRolling : public Pair {
 
   void allocate();
   void choose_kernel();
-  // compute() in pair_gran_hertz_rolling_kernel.cpp: eval() for the rolling model, for the
-  // constants (one set or per type pair) and the build (AVX2 or baseline), then walk_pairs()
-  template <bool SPECIAL> void eval_rolling(bool update_history);
-  template <int ROLL, bool UPDATE, bool SPECIAL> void eval();
-  template <int ROLL, bool UPDATE, bool SPECIAL, bool SAME>
+  // compute() in pair_gran_hertz_rolling_kernel.cpp: eval() for the rolling model and the
+  // special-bond factors, then walk_pairs() for the constants (one set or per type pair) and
+  // the build (AVX2 or baseline)
+  template <int ROLL, bool SPECIAL> void eval();
+  template <int ROLL, bool SPECIAL, bool SAME>
   TBAGS_TARGET_AVX2 void walk_pairs_avx2(const tbags::contact::Params *same);
-  template <int ROLL, bool UPDATE, bool SPECIAL, bool SAME>
+  template <int ROLL, bool SPECIAL, bool SAME>
   inline void walk_pairs(const tbags::contact::Params *same);
   // the batch law's build: keyword 'kernel auto|avx2|baseline'; simd_avx2 (1: AVX2, 0: baseline)
   // is the one init_style chose and logged, an int so that extract("kernel_avx2") can give it

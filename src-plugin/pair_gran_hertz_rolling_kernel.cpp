@@ -65,19 +65,13 @@ void PairGranHertzRolling::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   if (!batch) batch.reset(new Batch());    // zeroed: whole 4-row groups are read
-  const bool update_history = update->setupflag == 0;
   // special-bond bits in the neighbor list: only with bonds and special factors other than 0, 1
   const bool special = atom->molecular != Atom::ATOMIC &&
       (neighbor->special_flag[1] == 2 || neighbor->special_flag[2] == 2 ||
        neighbor->special_flag[3] == 2);
-  special ? eval_rolling<true>(update_history) : eval_rolling<false>(update_history);
-}
-
-template <bool SPECIAL> void PairGranHertzRolling::eval_rolling(bool update_history)
-{
-  if (rolling == law::ROLLING_EPSD) update_history ? eval<law::ROLLING_EPSD, true, SPECIAL>() : eval<law::ROLLING_EPSD, false, SPECIAL>();
-  else if (rolling == law::ROLLING_CDT) update_history ? eval<law::ROLLING_CDT, true, SPECIAL>() : eval<law::ROLLING_CDT, false, SPECIAL>();
-  else update_history ? eval<law::ROLLING_NONE, true, SPECIAL>() : eval<law::ROLLING_NONE, false, SPECIAL>();
+  if (rolling == law::ROLLING_EPSD) special ? eval<law::ROLLING_EPSD, true>() : eval<law::ROLLING_EPSD, false>();
+  else if (rolling == law::ROLLING_CDT) special ? eval<law::ROLLING_CDT, true>() : eval<law::ROLLING_CDT, false>();
+  else special ? eval<law::ROLLING_NONE, true>() : eval<law::ROLLING_NONE, false>();
 }
 
 /* ----------------------------------------------------------------------
@@ -203,7 +197,7 @@ TBAGS_INLINE bool PairGranHertzRolling::pack_atoms()
    SPECIAL: the list may hold special-bond bits (else every factor is 1 and j needs no mask).
 ------------------------------------------------------------------------- */
 
-template <int ROLL, bool UPDATE, bool SPECIAL> void PairGranHertzRolling::eval()
+template <int ROLL, bool SPECIAL> void PairGranHertzRolling::eval()
 {
   // one set of constants for all contacts (law::batch_law's SAME), else per contact
   const law::Params *same = uniform_params();
@@ -211,31 +205,32 @@ template <int ROLL, bool UPDATE, bool SPECIAL> void PairGranHertzRolling::eval()
 #ifdef TBAGS_HAVE_AVX2_CLONE
   if (simd_avx2) {
     if constexpr (!SPECIAL)
-      if (same) return walk_pairs_avx2<ROLL, UPDATE, false, true>(same);
-    return walk_pairs_avx2<ROLL, UPDATE, SPECIAL, false>(nullptr);
+      if (same) return walk_pairs_avx2<ROLL, false, true>(same);
+    return walk_pairs_avx2<ROLL, SPECIAL, false>(nullptr);
   }
 #endif
   if constexpr (!SPECIAL)
-    if (same) return walk_pairs<ROLL, UPDATE, false, true>(same);
-  walk_pairs<ROLL, UPDATE, SPECIAL, false>(nullptr);
+    if (same) return walk_pairs<ROLL, false, true>(same);
+  walk_pairs<ROLL, SPECIAL, false>(nullptr);
 }
 
 // packing and gather built for AVX2 too (no FMA: the same bits as the baseline build)
-template <int ROLL, bool UPDATE, bool SPECIAL, bool SAME>
+template <int ROLL, bool SPECIAL, bool SAME>
 void PairGranHertzRolling::walk_pairs_avx2(const law::Params *same)
 {
-  walk_pairs<ROLL, UPDATE, SPECIAL, SAME>(same);
+  walk_pairs<ROLL, SPECIAL, SAME>(same);
 }
 
 // SAME: *same holds the constants of all contacts (else per contact, b.p)
-template <int ROLL, bool UPDATE, bool SPECIAL, bool SAME>
+template <int ROLL, bool SPECIAL, bool SAME>
 TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
 {
   if (list->inum == 0) return;
   const int nall = atom->nlocal + atom->nghost;
   // the candidate list holds every pair that can touch (else it is rebuilt in this pass)
-  const bool valid = pack_atoms() && update->setupflag == 0 &&
-      neighbor->lastcall == cand_lastcall;
+  const bool integrate = update->setupflag == 0;    // the histories (not in a run's set-up)
+  const double dt = update->dt;
+  const bool valid = pack_atoms() && integrate && neighbor->lastcall == cand_lastcall;
   Batch &b = *batch;
   const AtomX *__restrict px = packx;
   const AtomV *__restrict pv = packv;
@@ -251,9 +246,11 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
   auto flush = [&](int n) __attribute__((noinline)) {
     hist_rows<NH>(b, n, simd_avx2);
     // the fast path; in the rare batch where a contact needs the full law, all again with it
-    if (run_law<ROLL, UPDATE, SAME, SPECIAL, true>(b, n, update->dt, limit_damping, simd_avx2, same)) {
+    if (integrate ? run_law<ROLL, true, SAME, SPECIAL, true>(b, n, dt, limit_damping, simd_avx2, same)
+                  : run_law<ROLL, false, SAME, SPECIAL, true>(b, n, dt, limit_damping, simd_avx2, same)) {
       hist_rows<NH>(b, n, simd_avx2);
-      run_law<ROLL, UPDATE, SAME, SPECIAL, false>(b, n, update->dt, limit_damping, simd_avx2, same);
+      integrate ? run_law<ROLL, true, SAME, SPECIAL, false>(b, n, dt, limit_damping, simd_avx2, same)
+                : run_law<ROLL, false, SAME, SPECIAL, false>(b, n, dt, limit_damping, simd_avx2, same);
     }
     rows_hist<NH>(b, n, simd_avx2);
 #ifdef TBAGS_HAVE_AVX2_CLONE
