@@ -3,7 +3,8 @@
    pair_style gran/hertz/rolling: Hertz-Mindlin contact with restitution damping, a friction
    matrix and rolling resistance. The physics is in law/contact_law.h, its batch form in
    law/contact_chain.h; compute() is in pair_gran_hertz_rolling_kernel.cpp. This file: the
-   style's settings, coefficients, init, single(), restart and data files.
+   style's settings, coefficients, init, single(), restart and data files (about 590 lines, most
+   of them the keyword parsing and its error messages, which name the command and the fix).
 ------------------------------------------------------------------------- */
 
 #include "pair_gran_hertz_rolling.h"
