@@ -1,5 +1,6 @@
 # Locate or build the LAMMPS the plugin is compiled against. Sets LAMMPS_SOURCE_DIR,
-# LAMMPS_EXECUTABLE and LAMMPS_HEADER_DIRS. A user's own tree wins over the pinned build.
+# LAMMPS_EXECUTABLE, LAMMPS_HEADER_DIRS and LAMMPS_SIZES (smallbig, bigbig or smallsmall: the
+# integer sizes, read from the lmp binary's -h, else from LAMMPS_DIR's CMakeCache.txt). A user's own tree wins over the pinned build.
 set(LAMMPS_SOURCE_DIR "" CACHE PATH "LAMMPS source tree (with src/ and cmake/) to build the plugin against")
 set(LAMMPS_EXECUTABLE "" CACHE FILEPATH "lmp binary built from LAMMPS_SOURCE_DIR with PLUGIN GRANULAR MOLECULE BPM")
 set(LAMMPS_DIR "" CACHE PATH "LAMMPS build or install directory (holds lmp); used with LAMMPS_SOURCE_DIR")
@@ -44,6 +45,7 @@ endif()
 if(NOT LAMMPS_EXECUTABLE)
   find_program(LAMMPS_EXECUTABLE NAMES lmp lmp_mpi)
 endif()
+set(_sizes "")
 if(LAMMPS_EXECUTABLE)
   # the binary must have the PLUGIN package, or 'plugin load' does not exist
   execute_process(COMMAND ${LAMMPS_EXECUTABLE} -h OUTPUT_VARIABLE _help ERROR_QUIET TIMEOUT 60)
@@ -57,9 +59,24 @@ if(LAMMPS_EXECUTABLE)
       message(FATAL_ERROR "tbags: ${LAMMPS_EXECUTABLE} was built without the ${_pkg} package; rebuild LAMMPS with -D PKG_${_pkg}=on or drop -DLAMMPS_EXECUTABLE to use the pinned build")
     endif()
   endforeach()
+  # the integer sizes the binary was built with (it prints its -DLAMMPS_<SIZES> define)
+  if(_help MATCHES "-DLAMMPS_(SMALLBIG|BIGBIG|SMALLSMALL)")
+    string(TOLOWER "${CMAKE_MATCH_1}" _sizes)
+  endif()
 else()
   message(WARNING "tbags: no lmp binary given (-DLAMMPS_EXECUTABLE=...): the plugin builds, the deck tests are skipped")
 endif()
+if(NOT _sizes AND LAMMPS_DIR AND EXISTS "${LAMMPS_DIR}/CMakeCache.txt")
+  file(STRINGS "${LAMMPS_DIR}/CMakeCache.txt" _line REGEX "^LAMMPS_SIZES:")
+  string(REGEX REPLACE "^LAMMPS_SIZES:[A-Z]*=" "" _sizes "${_line}")
+endif()
+if(NOT _sizes)
+  set(_sizes smallbig)
+  message(WARNING "tbags: the integer sizes of this LAMMPS are unknown (no lmp to ask, no LAMMPS_DIR): "
+    "building for LAMMPS's default, smallbig; give -DLAMMPS_EXECUTABLE=... if yours is bigbig or smallsmall")
+endif()
+set(LAMMPS_SIZES ${_sizes})
+string(TOUPPER "LAMMPS_${_sizes}" LAMMPS_SIZES_DEFINE)
 set(LAMMPS_HEADER_DIRS ${LAMMPS_SOURCE_DIR}/src ${LAMMPS_SOURCE_DIR}/src/GRANULAR
     ${LAMMPS_SOURCE_DIR}/src/BPM ${LAMMPS_SOURCE_DIR}/src/MOLECULE ${LAMMPS_SOURCE_DIR}/src/PLUGIN)
-message(STATUS "tbags: LAMMPS source ${LAMMPS_SOURCE_DIR}; lmp ${LAMMPS_EXECUTABLE}")
+message(STATUS "tbags: LAMMPS source ${LAMMPS_SOURCE_DIR}; lmp ${LAMMPS_EXECUTABLE}; integer sizes ${LAMMPS_SIZES}")

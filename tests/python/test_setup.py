@@ -89,3 +89,21 @@ def test_launcher_shear_presets_and_bad_arguments():
     assert r.returncode != 0 and "--estimate is for the paper preset" in r.stderr
     r = run([str(ROOT / "tbags"), "shear", "--help"])
     assert r.returncode == 0 and all(p in r.stdout for p in ("demo", "trends", "quasistatic", "paper"))
+
+
+@pytest.mark.parametrize("sizes", ["BIGBIG", "SMALLSMALL", "SMALLBIG"])
+def test_plugin_takes_the_integer_sizes_of_lammps(tmp_path, sizes):
+    """A bigbig (or smallsmall) LAMMPS gets a plugin built for it, not LAMMPS's default smallbig:
+    the sizes come from the binary's own -h (its -DLAMMPS_<SIZES> line)."""
+    fake = tmp_path / "lmp"
+    fake.write_text("#!/bin/sh\nprintf 'Large-scale Atomic/Molecular Massively Parallel Simulator\\n\\n"
+                    "-DLAMMPS_GZIP\\n-DLAMMPS_%s\\n\\nInstalled packages:\\n\\nBPM GRANULAR MOLECULE PLUGIN\\n\\n"
+                    "List of individual style options\\n'\n" % sizes)
+    fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
+    r = run(["cmake", "-S", str(ROOT), "-B", str(tmp_path / "b"), "-DTBAGS_TESTS=OFF",
+             "-DLAMMPS_SOURCE_DIR=" + lammps_source_dir(), "-DLAMMPS_EXECUTABLE=" + str(fake)])
+    assert r.returncode == 0, r.stderr
+    assert "integer sizes %s" % sizes.lower() in r.stdout
+    flags = (tmp_path / "b" / "CMakeFiles" / "tbagsplugin.dir" / "flags.make").read_text()
+    defines = set(re.findall(r"-DLAMMPS_(SMALLBIG|BIGBIG|SMALLSMALL)\b", flags))
+    assert defines == {sizes}
