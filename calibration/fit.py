@@ -222,11 +222,12 @@ def run_deck(deck, workdir, variables):
     return out, time.time() - t0
 
 
-def tagged(out, tag):
-    lines = [l for l in out.splitlines() if l.startswith(tag)]
-    if not lines:
-        fail("no '%s' line in the LAMMPS output" % tag)
-    return lines[-1]
+def summary(workdir, name):
+    """A deck's machine-readable summary (name.json, written by its print ... file)."""
+    path = Path(workdir) / (name + ".json")
+    if not path.is_file():
+        fail("the deck wrote no %s in %s" % (path.name, workdir))
+    return json.loads(path.read_text())
 
 
 # restart files of the plugin: 2 since the pair's contact history is in fix NEIGH_HISTORY/TBAGS
@@ -308,7 +309,7 @@ class Calibration:
             out, secs = run_deck("in.triax_prep", d, dict(
                 self.cell_vars(), sigma3=fmt(p * 1e6), E=fmt(E), mu_prep=fmt(mu), e0=fmt(target),
                 seed=a.seed, out="prep.restart"))
-            e = float(tagged(out, "PREP:").split("void ratio")[1].split(",")[0])
+            e = summary(d, "prep")["void_ratio"]
             tries.append((mu, e))
             print("fit.py: sample %g MPa: mu_prep %.4f -> void ratio %.4f (%.0f s)" % (p, mu, e, secs),
                   flush=True)
@@ -360,14 +361,12 @@ class Calibration:
             self.cell_vars(), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
             mu=fmt(prm["mu"]), mur=fmt(prm["mur"]), inertial=fmt(self.a.inertial),
             strain=fmt(self.a.strain), csv="triax.csv"))
-        walls = [float(x) for x in tagged(out, "WALLS:").split()[1:]]
-        cons = tagged(out, "CONSOLIDATED:")
-        shear = tagged(out, "SHEAR:")
+        cons, shear = summary(d, "consolidated"), summary(d, "shear")
         rec = {"csv": str(d / "triax.csv"), "seconds": secs,
-               "e0": float(cons.split("void ratio")[1].split(",")[0]),
-               "wall_err_max": max(abs(w / (p * 1e6) - 1) for w in walls[:4]),
-               "inertial": float(shear.split("inertial number")[1].split()[0]),
-               "rate": float(shear.split("rate")[1].split()[0]),
+               "e0": cons["void_ratio"],
+               "wall_err_max": max(abs(w / (p * 1e6) - 1) for w in cons["walls_Pa"][:4]),
+               "inertial": shear["inertial_number"],
+               "rate": shear["rate_per_s"],
                "mu_prep": s["mu_prep"]}
         self.eval_cache.put(key, rec)
         print("fit.py: run mu %.4g mur %.4g E %.3g at %g MPa: %.0f s" % (prm["mu"], prm["mur"], prm["E"], p, secs),

@@ -23,6 +23,7 @@ Speed (quasi-static check): the two runs' S-u curves, interpolated on the shared
 Prints every measured number and a table of the realizations; exits 1 if a check fails.
 """
 import argparse
+import json
 import re
 import sys
 from pathlib import Path
@@ -99,8 +100,12 @@ def edge_forces(run, band=0.010):
 
 
 def sand_height_mm(run):
-    """(nz - 2) x 5 mm, nz from the 'BAG nx x ny x nz' line of the bag's log (log.bag beside the
-    run or in its parent folder, where ./tbags shear writes it)."""
+    """(nz - 2) x 5 mm, nz from in.bag's summary bag.json beside the run or in its parent folder
+    (where ./tbags shear writes it), else from the 'BAG nx x ny x nz' line of log.bag (runs made
+    before bag.json)."""
+    for summary in (Path(run) / "bag.json", Path(run).parent / "bag.json"):
+        if summary.is_file():
+            return (int(json.loads(summary.read_text())["nz"]) - 2) * 5.0
     for log in (Path(run) / "log.bag", Path(run).parent / "log.bag"):
         if log.is_file():
             m = re.search(r"^BAG \d+ x \d+ x (\d+):", log.read_text(errors="replace"), re.M)

@@ -14,6 +14,7 @@ u_final / (v dt) steps per load (dt of the measured run). Ranks beyond those mea
 from the largest measured count (marked), which a larger bag approaches better than the demo bag.
 """
 import argparse
+import json
 import math
 import re
 import sys
@@ -61,10 +62,14 @@ def sand_grains(nx, ny, nz, s=0.005):
 
 def project(est_dir, ranks):
     est_dir = Path(est_dir)
-    m = SIZE.search((est_dir / "log.bag").read_text()) if (est_dir / "log.bag").is_file() else None
-    if m is None:
-        raise SystemExit("project_time: no BAG line in %s" % (est_dir / "log.bag"))
-    nx, ny, nz = (int(g) for g in m.groups()[:3])
+    if (est_dir / "bag.json").is_file():    # in.bag's summary
+        bag = json.loads((est_dir / "bag.json").read_text())
+        nx, ny, nz = bag["nx"], bag["ny"], bag["nz"]
+    else:    # a bag made before bag.json: its log's BAG line
+        m = SIZE.search((est_dir / "log.bag").read_text()) if (est_dir / "log.bag").is_file() else None
+        if m is None:
+            raise SystemExit("project_time: no bag.json and no BAG line in %s" % (est_dir / "log.bag"))
+        nx, ny, nz = (int(g) for g in m.groups()[:3])
     fill_steps = sum(s for _, _, s, _ in loops(est_dir / "log.fill"))
     cost, comp_steps, dt = {}, None, None
     for d in sorted(est_dir.glob("np*")):

@@ -1,6 +1,8 @@
 """inputs/in.bag: the bag shell has exactly the formula's particle and bond counts for several
 sizes (the paper's 81 x 81 x 17: 17,922 and 35,840), every particle has 2 to 4 bonds at one
 spacing, and a size below 3 stops with a clear message."""
+import json
+
 import numpy as np
 import pytest
 
@@ -28,6 +30,9 @@ def test_bag_counts(tmp_path, size):
     atoms, bonds = counts(*size)
     print(line)
     assert "%d particles, %d bonds" % (atoms, bonds) in line
+    # the summary for the tools (check_trends, project_time)
+    assert json.loads((tmp_path / "bag.json").read_text()) == {
+        "nx": nx, "ny": ny, "nz": nz, "particles": atoms, "bonds": bonds}
     data = (tmp_path / "bag.data").read_text()
     assert "%d atoms" % atoms in data and "%d bonds" % bonds in data
     # bonds per particle: 2 (corners of a 3-high edge) to 4 (faces)

@@ -5,6 +5,7 @@ wall, the misfit is zero on the data itself, fit.py runs end to end on a tiny sa
 Tiny sample: a 25 x 25 x 50 mm cell (260 grains of the ten sand sizes); its walls loosen the
 packing, so it is prepared at void ratio 0.80 +/- 0.03 rather than the 0.68 of the real cell."""
 import importlib.util
+import json
 import os
 import shutil
 import subprocess
@@ -41,8 +42,15 @@ def cell(tmp_path_factory):
 
 
 def test_cell_reaches_the_confining_stress_on_every_wall(cell):
-    _, out = cell
-    walls = [float(x) for x in [l for l in out.splitlines() if l.startswith("WALLS:")][0].split()[1:]]
+    d, out = cell
+    # the deck's summaries for the tools (fit.py reads them) agree with its printed lines
+    cons = json.loads((d / "consolidated.json").read_text())
+    walls = cons["walls_Pa"]
+    printed = [float(x) for x in [l for l in out.splitlines() if l.startswith("WALLS:")][0].split()[1:]]
+    assert walls == pytest.approx(printed, abs=0.006)
+    prep = json.loads((d / "prep.json").read_text())
+    assert prep["sigma3_Pa"] == SIGMA3 and 0.3 < prep["void_ratio"] < 1.5
+    assert json.loads((d / "shear.json").read_text())["inertial_number"] > 0
     print("wall stresses after consolidation (Pa):", walls)
     assert len(walls) == 6
     for s in walls:
@@ -106,7 +114,6 @@ def test_fit_recovers_a_known_friction(tmp_path):
     its misfit under a tenth of the start's."""
     import csv
     import hashlib
-    import json
     common = TINY_ARGS + ["--pressures", "0.2", "--fit", "mu", "--mur", "0.05", "--grid-mur", "0.05"]
     made = run_fit(common + ["--mu", "0.6", "--budget", "1", "--grid-mu", "0.6", "--no-figure"], tmp_path)
     assert made.returncode == 0, made.stdout[-2000:] + made.stderr[-2000:]

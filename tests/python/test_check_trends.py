@@ -135,3 +135,14 @@ def test_sand_height_from_the_bag_log(tmp_path):
     assert failed(ct.check_trends(make_trends(tmp_path / "c", nz=17, **kw))) != []
     with pytest.raises(SystemExit, match="no 'BAG nx x ny x nz' line"):
         ct.sand_height_mm(tmp_path / "nowhere" / "F5500")
+
+
+def test_sand_height_from_the_bag_summary(tmp_path):
+    """bag.json (in.bag's summary) gives nz; a run made before it, the BAG line of log.bag."""
+    run = tmp_path / "F1960"
+    run.mkdir()
+    (tmp_path / "bag.json").write_text('{"nx": 25, "ny": 25, "nz": 9, "particles": 1922, "bonds": 3840}')
+    (tmp_path / "log.bag").write_text("BAG 25 x 25 x 5: 1 particles, 1 bonds\n")
+    assert ct.sand_height_mm(run) == 35.0
+    (tmp_path / "bag.json").unlink()
+    assert ct.sand_height_mm(run) == 15.0

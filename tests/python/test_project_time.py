@@ -60,7 +60,7 @@ def test_projection_by_hand(tmp_path):
 
 
 def test_missing_and_truncated(tmp_path):
-    with pytest.raises(SystemExit, match="no BAG line"):
+    with pytest.raises(SystemExit, match="no bag.json and no BAG line"):
         pt.project(tmp_path, 1)
     make(tmp_path)
     (tmp_path / "np2" / "log.shear").write_text("LAMMPS (4 Feb 2025)\n")
