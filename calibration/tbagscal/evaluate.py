@@ -1,0 +1,117 @@
+"""The samples (one per confining stress, void ratio reached by the preparation friction) and the
+triaxial runs of a parameter set, each cached."""
+import threading
+from pathlib import Path
+
+from .common import PREP_MU_MAX, PREP_MU_START, PREP_SLOPE, fail, fmt
+from .runs import Cache, RESTART_FORMAT, deck_hash, run_deck, summary
+
+
+class Calibration:
+    def __init__(self, a):
+        self.a = a
+        self.work = Path(a.workdir)
+        self.prep_cache = Cache(self.work / "prep.json")
+        self.eval_cache = Cache(self.work / "evaluations.json")
+        self.prep_locks = {}
+        self.lock = threading.Lock()
+
+    def cell_vars(self):
+        a = self.a
+        return {"W": fmt(a.width), "H": fmt(a.height), "dt": fmt(a.dt)}
+
+    # ---- samples ------------------------------------------------------------------------
+    def prep_key(self, p, E):
+        a = self.a
+        return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s_deck%s_r%d" % (
+            fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width), fmt(a.height), a.seed, fmt(a.dt),
+            deck_hash("in.triax_prep", "cell.inc"), RESTART_FORMAT)
+
+    def sample(self, p, E):
+        """Restart file of the sample at sigma3 = p MPa (void ratio within tolerance)."""
+        key = self.prep_key(p, E)
+        with self.lock:
+            lk = self.prep_locks.setdefault(key, threading.Lock())
+        with lk:
+            hit = self.prep_cache.get(key)
+            if hit and Path(hit["restart"]).is_file():
+                return hit
+            return self._prepare(p, E, key)
+
+    def _prepare(self, p, E, key):
+        a = self.a
+        target, tol = a.void_ratio, a.e_tol
+        tries = []
+        mu = PREP_MU_START
+        for k in range(6):
+            d = self.work / "prep" / key / ("mu%s" % fmt(mu))
+            out, secs = run_deck("in.triax_prep", d, dict(
+                self.cell_vars(), sigma3=fmt(p * 1e6), E=fmt(E), mu_prep=fmt(mu), e0=fmt(target),
+                seed=a.seed, out="prep.restart"))
+            e = summary(d, "prep")["void_ratio"]
+            tries.append((mu, e))
+            print("fit.py: sample %g MPa: mu_prep %.4f -> void ratio %.4f (%.0f s)" % (p, mu, e, secs),
+                  flush=True)
+            if abs(e - target) <= tol:
+                rec = {"restart": str(d / "prep.restart"), "mu_prep": mu, "e": e, "tries": tries,
+                       "seconds": secs}
+                self.prep_cache.put(key, rec)
+                return rec
+            # next guess: secant through the two closest tries, else the default slope
+            if len(tries) >= 2:
+                (m1, e1), (m2, e2) = sorted(tries, key=lambda t: abs(t[1] - target))[:2]
+                slope = (e2 - e1) / (m2 - m1) if abs(m2 - m1) > 1e-9 and (e2 - e1) * (m2 - m1) > 0 else PREP_SLOPE
+                base_mu, base_e = m1, e1
+            else:
+                slope, base_mu, base_e = PREP_SLOPE, mu, e
+            nxt = min(PREP_MU_MAX, max(0.0, base_mu + (target - base_e) / slope))
+            if any(abs(nxt - m) < 1e-4 for m, _ in tries):
+                edge = [t for t in tries if abs(t[0] - nxt) < 1e-4][0]
+                if nxt <= 0.0:
+                    fail("--void-ratio %g: the sample cannot reach this void ratio at %g MPa: even "
+                         "frictionless preparation (mu_prep = 0) gives e = %.4f (too dense a target "
+                         "for these sizes)" % (target, p, edge[1]))
+                if nxt >= PREP_MU_MAX:
+                    fail("--void-ratio %g: the sample cannot reach this void ratio at %g MPa: the "
+                         "loosest preparation (mu_prep = %g) gives e = %.4f (too loose a target)"
+                         % (target, p, PREP_MU_MAX, edge[1]))
+                nxt = 0.5 * (nxt + base_mu)
+            mu = round(nxt, 4)
+        best = min(tries, key=lambda t: abs(t[1] - target))
+        fail("--void-ratio %g: the sample did not reach this void ratio within %g at %g MPa in %d "
+             "preparations (closest e = %.4f at mu_prep = %.4f); widen --e-tol or check the sizes"
+             % (target, tol, p, len(tries), best[1], best[0]))
+
+    # ---- shear runs ---------------------------------------------------------------------
+    def run_key(self, prm, p):
+        a = self.a
+        return "%s_mu%s_mur%s_I%s_strain%s_deck%s" % (self.prep_key(p, prm["E"]), fmt(prm["mu"]),
+                                                      fmt(prm["mur"]), fmt(a.inertial), fmt(a.strain),
+                                                      deck_hash("in.triax", "cell.inc"))
+
+    def shear(self, prm, p):
+        key = self.run_key(prm, p)
+        hit = self.eval_cache.get(key)
+        if hit and Path(hit["csv"]).is_file():
+            return hit
+        s = self.sample(p, prm["E"])
+        d = self.work / "runs" / key
+        out, secs = run_deck("in.triax", d, dict(
+            self.cell_vars(), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
+            mu=fmt(prm["mu"]), mur=fmt(prm["mur"]), inertial=fmt(self.a.inertial),
+            strain=fmt(self.a.strain), csv="triax.csv"))
+        cons, shear = summary(d, "consolidated"), summary(d, "shear")
+        rec = {"csv": str(d / "triax.csv"), "seconds": secs,
+               "e0": cons["void_ratio"],
+               "wall_err_max": max(abs(w / (p * 1e6) - 1) for w in cons["walls_Pa"][:4]),
+               "inertial": shear["inertial_number"],
+               "rate": shear["rate_per_s"],
+               "mu_prep": s["mu_prep"]}
+        self.eval_cache.put(key, rec)
+        print("fit.py: run mu %.4g mur %.4g E %.3g at %g MPa: %.0f s" % (prm["mu"], prm["mur"], prm["E"], p, secs),
+              flush=True)
+        return rec
+
+    def evaluate(self, prm, pool):
+        futs = {p: pool.submit(self.shear, prm, p) for p in self.a.pressures}
+        return {p: f.result() for p, f in futs.items()}

@@ -1,0 +1,89 @@
+"""The Toyoura data and the misfit of a run's curves against them."""
+import csv
+import hashlib
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .common import W_VOL, fail
+
+
+def load_data(data_dir, pressures):
+    """{sigma3 MPa: (label, array[eps_a %, ratio, eps_v %], note)} for the pressures asked."""
+    d = Path(data_dir)
+    man = d / "manifest.csv"
+    if not man.is_file():
+        fail("--data %s: no manifest.csv (sigma3_MPa,file,sha256) in that directory" % d)
+    table = {}
+    with open(man) as fh:
+        for row in csv.DictReader(fh):
+            f = d / row["file"]
+            if not f.is_file():
+                fail("--data %s: data file %s (sigma3 %s MPa, listed in manifest.csv) is missing"
+                     % (d, row["file"], row["sigma3_MPa"]))
+            digest = hashlib.sha256(f.read_bytes()).hexdigest()
+            if row.get("sha256") and digest != row["sha256"]:
+                fail("--data %s: %s differs from its manifest checksum (edited or truncated)" % (d, row["file"]))
+            arr = np.loadtxt(f, comments="#")
+            if arr.ndim != 2 or arr.shape[1] < 5:
+                fail("--data %s: %s needs 5 columns e_v e_x e_y e_z s33_over_s11" % (d, row["file"]))
+            table[float(row["sigma3_MPa"])] = (row["file"], np.column_stack([arr[:, 3], arr[:, 4], arr[:, 0]]))
+    if not table:
+        fail("--data %s: manifest.csv lists no data file" % d)
+    out = {}
+    for p in pressures:
+        near = min(table, key=lambda q: abs(q - p))
+        label, arr = table[near]
+        note = ""
+        if abs(near - p) > 1e-9:
+            note = ("no data at sigma3 = %g MPa: compared with the nearest curve, %s (%g MPa)"
+                    % (p, label, near))
+            print("fit.py: " + note, flush=True)
+        out[p] = (label, arr, note)
+    return out
+
+
+def read_curve(path):
+    rows = [l for l in Path(path).read_text().splitlines() if l and not l.startswith("#")]
+    names = rows[0].split(",")
+    arr = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
+    return {n: arr[:, k] for k, n in enumerate(names)}
+
+
+def misfit_one(curve, data):
+    """Misfit at one pressure: RMS of the stress ratio error relative to the data's peak ratio,
+    plus W_VOL times the RMS of the volumetric strain error relative to the data's volumetric
+    range (max - min), both at the data's axial strains (within the simulated range)."""
+    ea, ratio, ev = data[:, 0], data[:, 1], data[:, 2]
+    keep = ea <= curve["eps_a_pct"][-1] + 1e-9
+    ea, ratio, ev = ea[keep], ratio[keep], ev[keep]
+    r_sim = np.interp(ea, curve["eps_a_pct"], curve["ratio"])
+    v_sim = np.interp(ea, curve["eps_a_pct"], curve["eps_v_pct"])
+    jr = math.sqrt(np.mean(((r_sim - ratio) / ratio.max()) ** 2))
+    jv = math.sqrt(np.mean(((v_sim - ev) / max(ev.max() - ev.min(), 1e-9)) ** 2))
+    return jr + W_VOL * jv, jr, jv
+
+
+def summarise(prm, runs, data):
+    row = dict(prm)
+    tot = []
+    for p, rec in runs.items():
+        c = read_curve(rec["csv"])
+        j, jr, jv = misfit_one(c, data[p][1])
+        tot.append(j)
+        ev = c["eps_v_pct"]
+        kmax = int(np.argmax(ev))
+        lateral = np.column_stack([c[n] for n in ("sxlo_Pa", "sxhi_Pa", "sylo_Pa", "syhi_Pa")])[1:]
+        lat_err = np.abs(lateral / (p * 1e6) - 1)
+        row.update({
+            "J_%g" % p: j, "Jratio_%g" % p: jr, "Jvol_%g" % p: jv,
+            "peak_sim_%g" % p: float(c["ratio"].max()),
+            "peak_data_%g" % p: float(data[p][1][:, 1].max()),
+            "contract_dilate_%g" % p: bool(ev[kmax] > 0 and ev[-1] < ev[kmax] - 0.1),
+            "e0_%g" % p: rec["e0"], "I_%g" % p: rec["inertial"],
+            "wallerr_%g" % p: rec["wall_err_max"], "seconds_%g" % p: rec["seconds"],
+            "shearwall_max_%g" % p: float(lat_err.max()), "shearwall_mean_%g" % p: float(lat_err.mean()),
+            "Z_end_%g" % p: float(c["Z"][-1])})
+    row["J"] = float(np.mean(tot))
+    return row

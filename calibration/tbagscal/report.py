@@ -1,0 +1,123 @@
+"""The calibration's report (report.md, runs.csv, curve CSVs) and the sand include for the decks."""
+import csv
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from .common import PAPER, W_VOL, fail
+from .figure import figure
+from .misfit import read_curve
+
+
+def write_report(cal, data, rows, out_dir):
+    a = cal.a
+    out_dir = Path(out_dir)
+    tmp = Path(tempfile.mkdtemp(prefix=".fit-", dir=out_dir.parent))
+    try:
+        paper = rows[0]
+        best = min(rows, key=lambda r: r["J"])
+        ps = a.pressures
+        cols = ["n", "mu", "mur", "E", "J"] + [c % p for p in ps for c in
+                                                ("J_%g", "Jratio_%g", "Jvol_%g", "peak_sim_%g", "peak_data_%g",
+                                                 "contract_dilate_%g", "e0_%g", "I_%g", "wallerr_%g", "shearwall_mean_%g",
+                                                 "shearwall_max_%g", "Z_end_%g", "seconds_%g")]
+        with open(tmp / "runs.csv", "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(cols)
+            for r in rows:
+                w.writerow([("%.6g" % r[c]) if isinstance(r[c], float) else r[c] for c in cols])
+        curves = {}
+        for tag, r in (("start", paper), ("best", best)):
+            for p in ps:
+                rec = cal.eval_cache.get(cal.run_key(r, p))
+                shutil.copy(rec["csv"], tmp / ("curve_%s_%gMPa.csv" % (tag, p)))
+                curves[(tag, p)] = read_curve(rec["csv"])
+        L = []
+        L.append("# Triaxial calibration report (calibration/fit.py)\n")
+        L.append("Generated %s by `fit.py %s`.\n" % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+                                                     " ".join(sys.argv[1:])))
+        L.append("Sample: %g x %g x %g mm, target void ratio %g +/- %g; inertial number %g; dt %g s; "
+                 "strain to %g %%; misfit J = RMS(ratio error / data peak ratio) + %g RMS(eps_v error / "
+                 "data eps_v range), at the data's axial strains, averaged over the pressures.\n"
+                 % (a.width * 1e3, a.width * 1e3, a.height * 1e3, a.void_ratio, a.e_tol, a.inertial, a.dt,
+                    a.strain * 100, W_VOL))
+        for p in ps:
+            if data[p][2]:
+                L.append("- %s\n" % data[p][2])
+        for E in sorted({r["E"] for r in (paper, best)}):
+            L.append("Samples (E = %.3g GPa, N grains as in in.triax_prep): %s.\n" % (E / 1e9, "; ".join(
+                "%g MPa: void ratio %.4f at mu_prep %.4f (%d preparation%s)" % (
+                    p, pr["e"], pr["mu_prep"], len(pr["tries"]), "s" if len(pr["tries"]) > 1 else "")
+                for p in ps for pr in [cal.prep_cache.get(cal.prep_key(p, E))] if pr)))
+        L.append("\n## Start (paper) and best parameters\n")
+        L.append("| set | mu | mu_r | E (GPa) | J | " + " | ".join("J %g MPa" % p for p in ps) + " | "
+                 + " | ".join("peak ratio %g MPa sim/data" % p for p in ps) + " | contracts then dilates |")
+        L.append("|---" * (6 + 2 * len(ps)) + "|")
+        for tag, r in (("start (paper)" if paper["mu"] == PAPER["mu"] and paper["mur"] == PAPER["mur"]
+                        and paper["E"] == PAPER["E"] else "start", paper), ("best", best)):
+            L.append("| %s | %.4g | %.4g | %.3g | %.4f | %s | %s | %s |" % (
+                tag, r["mu"], r["mur"], r["E"] / 1e9, r["J"],
+                " | ".join("%.4f" % r["J_%g" % p] for p in ps),
+                " | ".join("%.3f / %.3f (%+.1f %%)" % (r["peak_sim_%g" % p], r["peak_data_%g" % p],
+                                                      100 * (r["peak_sim_%g" % p] / r["peak_data_%g" % p] - 1))
+                           for p in ps),
+                ", ".join("yes" if r["contract_dilate_%g" % p] else "no" for p in ps)))
+        L.append("\n## All evaluations\n")
+        L.append("| n | mu | mu_r | E (GPa) | J | " + " | ".join("J %g (ratio, vol)" % p for p in ps)
+                 + " | void ratio | wall error: consolidated; shearing mean, max | I | run time (s) |")
+        L.append("|---" * (9 + len(ps)) + "|")
+        for r in rows:
+            L.append("| %d | %.4g | %.4g | %.3g | %.4f | %s | %s | %s | %s | %s |" % (
+                r["n"], r["mu"], r["mur"], r["E"] / 1e9, r["J"],
+                " | ".join("%.4f (%.4f, %.4f)" % (r["J_%g" % p], r["Jratio_%g" % p], r["Jvol_%g" % p]) for p in ps),
+                ", ".join("%.4f" % r["e0_%g" % p] for p in ps),
+                "; ".join("%.2f; %.2f, %.2f %%" % (100 * r["wallerr_%g" % p], 100 * r["shearwall_mean_%g" % p],
+                                                    100 * r["shearwall_max_%g" % p]) for p in ps),
+                ", ".join("%.2g" % r["I_%g" % p] for p in ps),
+                ", ".join("%.0f" % r["seconds_%g" % p] for p in ps)))
+        L.append("\nFiles: runs.csv (this table, all columns), curve_start_*.csv and curve_best_*.csv "
+                 "(the deck's CSV), triaxial.png (figure), sand_calibrated.lmp (the best parameters for "
+                 "the shear decks: -var sand calibrated).\n")
+        (tmp / "report.md").write_text("\n".join(L))
+        (tmp / SAND_INCLUDE).write_text(sand_include(best, len(rows)))
+        if not a.no_figure:
+            figure(tmp / "triaxial.png", data, curves, ps, paper, best)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        for f in tmp.iterdir():
+            f.replace(out_dir / f.name)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return best
+
+
+SAND_INCLUDE = "sand_calibrated.lmp"
+
+
+def sand_include(best, n_evaluations, nu=0.1):
+    """The best parameters as a LAMMPS include (read by inputs/sand.lmp for -var sand calibrated):
+    the one place the decks take the calibrated sand from."""
+    return ("# Calibrated sand parameters: written by calibration/fit.py (the best of %d evaluations,\n"
+            "# misfit J = %.4f); read by inputs/sand.lmp for -var sand calibrated. Rewrite it with\n"
+            "# ./tbags calibrate (or fit.py --sand-include from runs.csv), not by hand.\n"
+            "variable sand_E equal %.6g\nvariable sand_nu equal %g\nvariable sand_mu equal %.6g\n"
+            "variable sand_mur equal %.6g\n"
+            "variable sand_source string 'calibration/results, fit n = %d, J = %.4f'\n"
+            % (n_evaluations, best["J"], best["E"], nu, best["mu"], best["mur"], best["n"], best["J"]))
+
+
+def rewrite_sand_include(out_dir):
+    """sand_calibrated.lmp from an existing runs.csv (the row of least misfit J)."""
+    path = Path(out_dir) / "runs.csv"
+    if not path.is_file():
+        fail("no %s: run the calibration first" % path)
+    with open(path, newline="") as fh:
+        rows = [{k: float(v) for k, v in r.items() if k in ("n", "mu", "mur", "E", "J")}
+                for r in csv.DictReader(fh)]
+    if not rows:
+        fail("%s has no evaluations" % path)
+    best = min(rows, key=lambda r: r["J"])
+    best["n"] = int(best["n"])
+    (Path(out_dir) / SAND_INCLUDE).write_text(sand_include(best, len(rows)))
+    return best

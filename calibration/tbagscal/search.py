@@ -1,0 +1,66 @@
+"""The search over mu, mu_r (and E): a grid, then Nelder-Mead from its best points, within a budget."""
+import concurrent.futures as cf
+
+import numpy as np
+
+from .common import BudgetSpent, RANGES, fmt
+from .misfit import summarise
+
+
+def search(cal, data):
+    a = cal.a
+    start = {"mu": a.mu, "mur": a.mur, "E": a.E}
+    rows, seen = [], {}
+
+    def key(prm):
+        return tuple(fmt(prm[k]) for k in ("mu", "mur", "E"))
+
+    pool = cf.ThreadPoolExecutor(max_workers=a.jobs)
+
+    def ev(prm):
+        k = key(prm)
+        if k in seen:
+            return seen[k]["J"]
+        if len(seen) >= a.budget:
+            raise BudgetSpent
+        for name in ("mu", "mur", "E"):
+            lo, hi, what = RANGES[name]
+            if not lo <= prm[name] <= hi:
+                return 1e3    # outside the physical range: a wall for the optimiser
+        row = summarise(prm, cal.evaluate(prm, pool), data)
+        row["n"] = len(seen) + 1
+        seen[k] = row
+        rows.append(row)
+        print("fit.py: evaluation %d/%d: mu %.4g mur %.4g E %.3g -> misfit %.4f" %
+              (row["n"], a.budget, prm["mu"], prm["mur"], prm["E"], row["J"]), flush=True)
+        return row["J"]
+
+    try:
+        ev(start)
+        for mu in a.grid_mu:
+            for mur in a.grid_mur:
+                ev(dict(start, mu=mu, mur=mur))
+        if len(seen) < a.budget:
+            from scipy.optimize import minimize
+            best = min(rows, key=lambda r: r["J"])
+            names = a.fit
+            scale = {"mu": 0.1, "mur": 0.05, "E": 0.5e9}
+            x0 = np.array([best[n] / scale[n] for n in names])
+            simplex = [x0] + [x0 + np.eye(len(names))[i] * (-1 if best[names[i]] / scale[names[i]] > 5 else 1)
+                              for i in range(len(names))]
+
+            def f(x):
+                prm = dict(best)
+                prm = {k: prm[k] for k in ("mu", "mur", "E")}
+                for n, v in zip(names, x):
+                    prm[n] = round(float(v) * scale[n], 4 if n != "E" else -6)
+                return ev(prm)
+
+            minimize(f, x0, method="Nelder-Mead",
+                     options={"initial_simplex": np.array(simplex), "maxfev": 10 * a.budget,
+                              "xatol": 0.05, "fatol": 1e-3})
+    except BudgetSpent:
+        pass
+    finally:
+        pool.shutdown(wait=True)
+    return rows
