@@ -4,7 +4,7 @@
    through the same contact law as pair gran/hertz/rolling (law/contact_chain.h); or a film: a
    two-faced sheet of finite thickness and mass, free to move under the particles' forces.
    About 730 lines, more than one job's 500: the keyword parsing with its error messages (about
-   250), the contact loop, the plate's motion (servo, velocity, free) and restart; splitting the
+   330), the contact loop, the plate's motion (servo, velocity, free) and restart; splitting the
    parsing into a file of its own is left for the issue that makes the plates' loop faster.
 ------------------------------------------------------------------------- */
 
