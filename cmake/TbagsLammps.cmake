@@ -1,6 +1,7 @@
 # Locate or build the LAMMPS the plugin is compiled against. Sets LAMMPS_SOURCE_DIR,
 # LAMMPS_EXECUTABLE, LAMMPS_HEADER_DIRS and LAMMPS_SIZES (smallbig, bigbig or smallsmall: the
-# integer sizes, read from the lmp binary's -h, else from LAMMPS_DIR's CMakeCache.txt). A user's own tree wins over the pinned build.
+# integer sizes, read from the lmp binary's -h, else from LAMMPS_DIR's CMakeCache.txt). A user's
+# own tree wins over the pinned build.
 set(LAMMPS_SOURCE_DIR "" CACHE PATH "LAMMPS source tree (with src/ and cmake/) to build the plugin against")
 set(LAMMPS_EXECUTABLE "" CACHE FILEPATH "lmp binary built from LAMMPS_SOURCE_DIR with PLUGIN GRANULAR MOLECULE BPM")
 set(LAMMPS_DIR "" CACHE PATH "LAMMPS build or install directory (holds lmp); used with LAMMPS_SOURCE_DIR")

@@ -34,7 +34,7 @@ namespace contact {
 // history rows h (3, or 6 with EPSD).
 // Out: f (on i; j gets -f), torques ti and tj, h updated; for one contact also the normal
 // force fn, fne, delta, and fs, fr, r below. The rest carries values from one loop to the next.
-template <int W> struct alignas(W == 1 ? 8 : 64) Lanes {    // one contact: no stack realignment
+template <int W> struct alignas(64) Lanes {
   static constexpr int N = W;
   static constexpr bool ONE = W == 1;    // one contact: m* and R* given, the parts kept
   int i[N], j[N];
@@ -80,10 +80,9 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   using vec::V3;
   // 64 bits like the lanes: a 32-bit flag makes the vectoriser take 8 lanes (and spill)
   long long redo = 0;
-  const int nl = Lanes<W>::ONE ? 1 : n;    // one contact: a known trip count, no SIMD loop
   // loop 1: geometry and Hertz force (stage 1)
   TBAGS_PRAGMA_SIMD
-  for (int l = 0; l < nl; l++) {
+  for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     double meff, reff;
     if (Lanes<W>::ONE) {
@@ -113,7 +112,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   // loop 2: normal damping (stage 2; its square root here, where the divider has time) and
   // tangential history (stage 3)
   TBAGS_PRAGMA_SIMD_OR_REDO
-  for (int l = 0; l < nl; l++) {
+  for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     double sqma;
     const double fn = normal_force(p, clip, b.meff[l], b.a[l], b.fne[l], b.vnnr[l], sqma);
@@ -127,7 +126,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   }
   // loop 3: tangential force (stage 4; torques without rolling)
   TBAGS_PRAGMA_SIMD
-  for (int l = 0; l < nl; l++) {
+  for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     V3 ht = row3(b.h, l);
     LaneOut o;
@@ -145,14 +144,11 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
       set_row3(b.tj, l, o.tj);
     }
   }
-  if (ROLL == ROLLING_NONE) {
-    if (Lanes<W>::ONE) set_row3(b.fr, 0, V3{0.0, 0.0, 0.0});
-    return redo != 0;
-  }
+  if (ROLL == ROLLING_NONE) return redo != 0;
   // loop 4: rolling history (stage 5, EPSD)
   if (ROLL == ROLLING_EPSD && UPDATE) {
     TBAGS_PRAGMA_SIMD_OR_REDO
-    for (int l = 0; l < nl; l++) {
+    for (int l = 0; l < n; l++) {
       const Params &p = SAME ? *same : *b.p[l];
       V3 hr = row3(b.h + 3, l);
       redo |= rolling_history<SAME, FAST>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]),
@@ -162,7 +158,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   }
   // loop 5: rolling force and torque (stage 6)
   TBAGS_PRAGMA_SIMD
-  for (int l = 0; l < nl; l++) {
+  for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     V3 hr{0.0, 0.0, 0.0};
     if constexpr (ROLL == ROLLING_EPSD) hr = row3(b.h + 3, l);
@@ -198,6 +194,7 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
   set_row3(b.wj, 0, load3(c.wj));
   set_row3(b.h, 0, load3(hist));
   set_row3(b.h + 3, 0, ROLL == ROLLING_EPSD ? load3(hist + 3) : V3{0.0, 0.0, 0.0});
+  set_row3(b.fr, 0, V3{0.0, 0.0, 0.0});    // no rolling: the chain leaves it
   if (update)
     batch_law<ROLL, true, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
   else
