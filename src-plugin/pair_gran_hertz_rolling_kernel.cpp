@@ -50,14 +50,19 @@ TBAGS_TARGET_AVX2 bool batch_law_avx2(Batch &b, int n, double dt, bool clip,
 }
 #endif
 
-// the build chosen at run time (avx2); SAME, SPECIAL, FAST as law::batch_law()
-template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST>
-bool run_law(Batch &b, int n, double dt, bool clip, bool avx2, const law::Params *same)
+// the build chosen at run time (avx2), the history integrated or not (integrate: not in a run's
+// set-up); SAME, SPECIAL, FAST as law::batch_law()
+template <int ROLL, bool SAME, bool SPECIAL, bool FAST>
+bool run_law(Batch &b, int n, double dt, bool clip, bool avx2, bool integrate,
+             const law::Params *same)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
-  if (avx2) return batch_law_avx2<ROLL, UPDATE, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
+  if (avx2)
+    return integrate ? batch_law_avx2<ROLL, true, SAME, SPECIAL, FAST>(b, n, dt, clip, same)
+                     : batch_law_avx2<ROLL, false, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
 #endif
-  return batch_law_baseline<ROLL, UPDATE, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
+  return integrate ? batch_law_baseline<ROLL, true, SAME, SPECIAL, FAST>(b, n, dt, clip, same)
+                   : batch_law_baseline<ROLL, false, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
 }
 }    // namespace
 
@@ -242,15 +247,13 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
   double **firsthistory = fix_history->firstvalue;
 
   constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
-  // not inlined into the walk: it would cost the walk registers (7 instructions per contact)
+  // not inlined into the walk: it would cost the walk registers (4 instructions per contact-step)
   auto flush = [&](int n) __attribute__((noinline)) {
     hist_rows<NH>(b, n, simd_avx2);
     // the fast path; in the rare batch where a contact needs the full law, all again with it
-    if (integrate ? run_law<ROLL, true, SAME, SPECIAL, true>(b, n, dt, limit_damping, simd_avx2, same)
-                  : run_law<ROLL, false, SAME, SPECIAL, true>(b, n, dt, limit_damping, simd_avx2, same)) {
+    if (run_law<ROLL, SAME, SPECIAL, true>(b, n, dt, limit_damping, simd_avx2, integrate, same)) {
       hist_rows<NH>(b, n, simd_avx2);
-      integrate ? run_law<ROLL, true, SAME, SPECIAL, false>(b, n, dt, limit_damping, simd_avx2, same)
-                : run_law<ROLL, false, SAME, SPECIAL, false>(b, n, dt, limit_damping, simd_avx2, same);
+      run_law<ROLL, SAME, SPECIAL, false>(b, n, dt, limit_damping, simd_avx2, integrate, same);
     }
     rows_hist<NH>(b, n, simd_avx2);
 #ifdef TBAGS_HAVE_AVX2_CLONE
