@@ -10,6 +10,7 @@ of the faster run's. Prints the table; exits 1 if a cycle differs by more.
 """
 import argparse
 import sys
+from statistics import mean, stdev
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
@@ -55,13 +56,9 @@ def main(argv=None):
     return 1 if bad else 0
 
 
-def mean(x):
-    return sum(x) / len(x)
-
-
 def sem(x):
-    m = mean(x)
-    return (sum((v - m) ** 2 for v in x) / (len(x) - 1) / len(x)) ** 0.5
+    """Standard error of the mean."""
+    return stdev(x) / len(x) ** 0.5
 
 
 def cycle_to_cycle(run):
