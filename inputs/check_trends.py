@@ -23,8 +23,6 @@ Speed (quasi-static check): the two runs' S-u curves, interpolated on the shared
 Prints every measured number and a table of the realizations; exits 1 if a check fails.
 """
 import argparse
-import json
-import re
 import sys
 from pathlib import Path
 
@@ -32,6 +30,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
 from tbagspost.dumps import read_contacts, read_grains    # noqa: E402  (the project's dump readers)
+from tbagspost.run import bag_size, log_timestep    # noqa: E402
 
 LOADS = (5500, 3730, 1960)
 RISE, W_MIN, DETACH, EDGE = 1.1, 0.001, 0.10, 1.2
@@ -55,10 +54,10 @@ def last_dump(run, kind):
 
 
 def timestep(run):
-    m = re.search(r"TIMESTEP:.*using ([0-9.eE+-]+) s", (Path(run) / "log.shear").read_text())
-    if not m:
+    dt = log_timestep(Path(run) / "log.shear")
+    if dt is None:
         raise SystemExit("check_trends: no TIMESTEP line in %s/log.shear" % run)
-    return float(m.group(1))
+    return dt
 
 
 def w_path(d):
@@ -100,18 +99,13 @@ def edge_forces(run, band=0.010):
 
 
 def sand_height_mm(run):
-    """(nz - 2) x 5 mm, nz from in.bag's summary bag.json beside the run or in its parent folder
-    (where ./tbags shear writes it), else from the 'BAG nx x ny x nz' line of log.bag (runs made
-    before bag.json)."""
-    for summary in (Path(run) / "bag.json", Path(run).parent / "bag.json"):
-        if summary.is_file():
-            return (int(json.loads(summary.read_text())["nz"]) - 2) * 5.0
-    for log in (Path(run) / "log.bag", Path(run).parent / "log.bag"):
-        if log.is_file():
-            m = re.search(r"^BAG \d+ x \d+ x (\d+):", log.read_text(errors="replace"), re.M)
-            if m:
-                return (int(m.group(1)) - 2) * 5.0
-    raise SystemExit("check_trends: no 'BAG nx x ny x nz' line in log.bag beside %s or above it" % run)
+    """(nz - 2) x 5 mm, nz of the bag made beside the run or in its parent folder (where ./tbags
+    shear makes it): bag.json, else log.bag's BAG line (tbagspost.run.bag_size)."""
+    size = bag_size(run, Path(run).parent)
+    if size is None:
+        raise SystemExit("check_trends: no bag.json and no 'BAG nx x ny x nz' line in log.bag beside "
+                         "%s or above it" % run)
+    return (size[2] - 2) * 5.0
 
 
 def check_trends(root):

@@ -14,27 +14,29 @@ u_final / (v dt) steps per load (dt of the measured run). Ranks beyond those mea
 from the largest measured count (marked), which a larger bag approaches better than the demo bag.
 """
 import argparse
-import json
 import math
 import re
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from tbagspost.run import bag_size, log_timestep  # noqa: E402  (the readers of a run's summaries)
+
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
-SIZE = re.compile(r"BAG (\d+) x (\d+) x (\d+): (\d+) particles")
 
 # the paper's protocol (doc/tbags_model.rst section 4)
 PAPER = dict(nx=81, ny=81, nz=17, loads=(5500, 3730, 1960), v=0.004, ufinal=0.015)
-DT_LINE = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
 DT_DECK = re.compile(r"^variable\s+dt\s+index\s+(\S+)", re.M)
 
 
 def timestep(shear_log):
     """The time step of the measured shear run (its TIMESTEP line), else in.shear's default."""
-    m = DT_LINE.search(shear_log.read_text(errors="replace")) if shear_log.is_file() else None
-    if m is None:
-        m = DT_DECK.search((Path(__file__).resolve().parent / "in.shear").read_text())
-    return float(m.group(1))
+    dt = log_timestep(shear_log)
+    if dt is None:
+        dt = float(DT_DECK.search((Path(__file__).resolve().parent / "in.shear").read_text()).group(1))
+    return dt
+
+
 D_MIN, D_STEP, E0 = 3.60465e-3, 0.310078e-3, 0.68
 
 
@@ -62,14 +64,10 @@ def sand_grains(nx, ny, nz, s=0.005):
 
 def project(est_dir, ranks):
     est_dir = Path(est_dir)
-    if (est_dir / "bag.json").is_file():    # in.bag's summary
-        bag = json.loads((est_dir / "bag.json").read_text())
-        nx, ny, nz = bag["nx"], bag["ny"], bag["nz"]
-    else:    # a bag made before bag.json: its log's BAG line
-        m = SIZE.search((est_dir / "log.bag").read_text()) if (est_dir / "log.bag").is_file() else None
-        if m is None:
-            raise SystemExit("project_time: no bag.json and no BAG line in %s" % (est_dir / "log.bag"))
-        nx, ny, nz = (int(g) for g in m.groups()[:3])
+    size = bag_size(est_dir)
+    if size is None:
+        raise SystemExit("project_time: no bag.json and no BAG line in %s" % (est_dir / "log.bag"))
+    nx, ny, nz = size
     fill_steps = sum(s for _, _, s, _ in loops(est_dir / "log.fill"))
     cost, comp_steps, dt = {}, None, None
     for d in sorted(est_dir.glob("np*")):

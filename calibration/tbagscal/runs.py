@@ -1,46 +1,35 @@
 """Running the calibration decks with the plugin, their JSON summaries and the cache of finished runs."""
 import hashlib
 import json
-import os
-import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
 
 from .common import HERE, ROOT, fail
 
+sys.path.insert(0, str(ROOT / "launcher"))
+from tbagsrun import LaunchError, lammps  # noqa: E402  (the launcher's runner)
+
 
 def lmp_command():
-    lmp = os.environ.get("TBAGS_LMP", "")
-    if not lmp:
-        fail("TBAGS_LMP is not set: run through './tbags calibrate ...' (which loads the "
-             "environment) or export TBAGS_LMP=/path/to/lmp and LAMMPS_PLUGIN_PATH=/path/to/plugin")
-    if not (Path(lmp).is_file() and os.access(lmp, os.X_OK)):
-        fail("TBAGS_LMP=%s is not an executable file" % lmp)
-    plug = os.environ.get("LAMMPS_PLUGIN_PATH", "")
-    if not plug or not (Path(plug) / "tbagsplugin.so").is_file():
-        fail("LAMMPS_PLUGIN_PATH=%r has no tbagsplugin.so: run './tbags setup' and use "
-             "'./tbags calibrate'" % plug)
-    return lmp
+    """The lmp binary, with the plugin beside it; stops clearly when either is missing."""
+    try:
+        lammps.plugin_file()
+        return lammps.executable()
+    except LaunchError as e:
+        fail("%s (./tbags calibrate ... loads both)" % e)
 
 
 def run_deck(deck, workdir, variables):
-    workdir = Path(workdir)
-    workdir.mkdir(parents=True, exist_ok=True)
-    cmd = [lmp_command(), "-nocite", "-log", "log.lammps", "-in", str(HERE / deck),
-           "-var", "tbags", str(ROOT)]
-    for k, v in variables.items():
-        cmd += ["-var", k, str(v)]
-    env = dict(os.environ, OMP_NUM_THREADS="1")
+    """calibration/<deck> in workdir (screen output in <deck>.out); (output, seconds)."""
+    lmp_command()
     t0 = time.time()
-    proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True)
-    out = proc.stdout + proc.stderr
-    (workdir / ("%s.out" % deck)).write_text(out)
-    if proc.returncode != 0:
-        err = [l for l in out.splitlines() if "ERROR" in l]
-        fail("%s failed in %s (rc %d): %s" % (deck, workdir, proc.returncode,
-                                              err[0] if err else out[-1500:]))
-    return out, time.time() - t0
+    res = lammps.run(HERE / deck, workdir, variables=variables, screen="%s.out" % deck)
+    if res.returncode != 0:
+        fail("%s failed in %s (rc %d): %s" % (deck, workdir, res.returncode,
+                                              res.error_line() or res.output[-1500:]))
+    return res.output, time.time() - t0
 
 
 def summary(workdir, name):

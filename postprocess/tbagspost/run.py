@@ -7,6 +7,7 @@ plate position) is interpolated linearly between the CSV rows (every 0.1 mm of u
 from the log line "TIMESTEP: ... using DT s" that in.shear prints (log.* or screen.*.txt), or
 given with --dt. This holds for dumps written at any step, also after a restart.
 """
+import json
 import re
 from pathlib import Path
 
@@ -17,6 +18,28 @@ from tbagspost import dumps, fail, read_columns
 CSV_COLUMNS = ("time_s", "u_mm", "w_mm", "S_N", "Fv_N")
 KINDS = ("grains", "contacts", "bonds")
 DT_LINE = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
+BAG_LINE = re.compile(r"^BAG (\d+) x (\d+) x (\d+):", re.M)
+
+
+def log_timestep(path):
+    """The time step of a log's 'TIMESTEP: ... using DT s' line (in.shear, in.cyclic), or None."""
+    path = Path(path)
+    m = DT_LINE.search(path.read_text(errors="replace")) if path.is_file() else None
+    return float(m.group(1)) if m else None
+
+
+def bag_size(*folders):
+    """(nx, ny, nz) of the bag made in the first of `folders` that has it: in.bag's summary
+    bag.json, else the 'BAG nx x ny x nz' line of log.bag (runs made before bag.json); None."""
+    for folder in map(Path, folders):
+        if (folder / "bag.json").is_file():
+            bag = json.loads((folder / "bag.json").read_text())
+            return int(bag["nx"]), int(bag["ny"]), int(bag["nz"])
+        if (folder / "log.bag").is_file():
+            m = BAG_LINE.search((folder / "log.bag").read_text(errors="replace"))
+            if m:
+                return tuple(int(g) for g in m.groups())
+    return None
 
 
 def read_csv(path):
@@ -67,12 +90,8 @@ class Run:
         """Time step (s): --dt, else the TIMESTEP line of the run's log."""
         if self._dt is None:
             logs = sorted(self.path.glob("log.*")) + sorted(self.path.glob("screen.*"))
-            for log in logs:
-                m = DT_LINE.search(log.read_text(errors="replace"))
-                if m:
-                    self._dt = float(m.group(1))
-                    break
-            else:
+            self._dt = next((dt for dt in map(log_timestep, logs) if dt is not None), None)
+            if self._dt is None:
                 fail("%s: no 'TIMESTEP: ... using DT s' line in its log.* or screen.* files; "
                      "give the time step with --dt" % self.path)
         return self._dt

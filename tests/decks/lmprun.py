@@ -1,43 +1,39 @@
-"""Run LAMMPS decks for the tests: serial or through mpirun, with the tbags plugin path set.
+"""Run LAMMPS decks for the tests, through the launcher's runner (launcher/tbagsrun/lammps.py),
+and read what they write.
 
 Every deck test imports this module. The environment comes from ctest (TBAGS_LMP,
 LAMMPS_PLUGIN_PATH); run through `./tbags test` or `ctest` rather than by hand.
 """
 import os
-import subprocess
+import sys
 import textwrap
 from pathlib import Path
 
 import numpy as np
 
-LMP = os.environ.get("TBAGS_LMP", "")
 ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(ROOT / "launcher"))
+from tbagsrun import lammps  # noqa: E402
+
+LMP = os.environ.get("TBAGS_LMP", "")
 PLUGIN = Path(os.environ.get("LAMMPS_PLUGIN_PATH", "")) / "tbagsplugin.so"
 
 
-class LammpsResult:
-    def __init__(self, proc, workdir):
-        self.returncode = proc.returncode
-        self.output = proc.stdout + proc.stderr
-        self.workdir = Path(workdir)
+INPUTS = ROOT / "inputs"
+# the deck tests' bag: 258 particles, 153 grains; each stage takes seconds
+TINY_BAG = {"nx": 9, "ny": 9, "nz": 5}
 
-    def check(self):
-        if self.returncode != 0:
-            raise AssertionError("LAMMPS failed (rc=%d):\n%s" % (self.returncode, self.output[-4000:]))
-        return self
 
-    def error_line(self):
-        """The first 'ERROR' line LAMMPS printed, or ''."""
-        for line in self.output.splitlines():
-            if "ERROR" in line:
-                return line
-        return ""
+def bag_and_fill(workdir, size=TINY_BAG):
+    """inputs/in.bag and in.fill in workdir: a filled bag for the shear, cyclic and stack tests."""
+    for deck in ("in.bag", "in.fill"):
+        run(INPUTS / deck, workdir, variables=size).check()
+    return Path(workdir)
 
 
 def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, timeout=1200):
-    """Run `deck` (text or path) in workdir; returns a LammpsResult (not checked)."""
-    if not LMP:
-        raise RuntimeError("TBAGS_LMP is not set: run the tests with ./tbags test or ctest")
+    """Run `deck` (text, written to in.test, or a path) in workdir; returns the runner's Result
+    (not checked: .check() raises with LAMMPS's first ERROR line)."""
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     if isinstance(deck, Path):
@@ -45,18 +41,7 @@ def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, ti
     else:
         deck_file = workdir / "in.test"
         deck_file.write_text(textwrap.dedent(deck))
-    cmd = [LMP, "-nocite", "-log", str(workdir / "log.lammps"), "-in", str(deck_file)]
-    for k, v in (variables or {}).items():
-        cmd += ["-var", str(k), str(v)]
-    cmd += list(args)
-    if np_ranks > 1:
-        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_ranks)] + cmd
-    env = dict(os.environ)
-    env.setdefault("OMP_NUM_THREADS", "1")
-    if not plugin_path:
-        env.pop("LAMMPS_PLUGIN_PATH", None)
-    proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True, timeout=timeout)
-    return LammpsResult(proc, workdir)
+    return lammps.run(deck_file, workdir, np_ranks, variables, args, timeout=timeout, plugin=plugin_path)
 
 
 def read_dump(path):

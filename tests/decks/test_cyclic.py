@@ -15,7 +15,7 @@ from tbagspost import cyclic, hysteresis  # noqa: E402
 
 INPUTS = lmprun.ROOT / "inputs"
 HERE = lmprun.ROOT / "tests" / "decks"
-SIZE = {"nx": 9, "ny": 9, "nz": 5, "tbags": lmprun.ROOT}
+SIZE = lmprun.TINY_BAG
 PROTOCOL = dict(SIZE, amps="0.25 0.5", cycles=2, vpeak=0.03)
 
 
@@ -41,8 +41,7 @@ def test_coulomb_loop_of_a_sliding_block(tmp_path, mu):
 def cycled(tmp_path_factory):
     """A tiny bag (9 x 9 x 5) filled, then cycled at 0.25 and 0.5 mm, 2 cycles each."""
     wd = tmp_path_factory.mktemp("cyclic")
-    lmprun.run(INPUTS / "in.bag", wd, variables=SIZE).check()
-    lmprun.run(INPUTS / "in.fill", wd, variables=SIZE).check()
+    lmprun.bag_and_fill(wd)
     shutil.copy(wd / "fill.data", wd / "fill.keep")
     res = lmprun.run(INPUTS / "in.cyclic", wd, variables=PROTOCOL).check()
     return wd, res

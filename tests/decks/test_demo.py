@@ -18,7 +18,7 @@ sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
 from tbagspost import realizations  # noqa: E402
 
 INPUTS = lmprun.ROOT / "inputs"
-DEMO = {"nx": 21, "ny": 21, "nz": 7, "tbags": lmprun.ROOT}
+DEMO = {"nx": 21, "ny": 21, "nz": 7}
 
 
 def committed_spread():
@@ -34,8 +34,7 @@ def band(values):
 
 
 def test_demo_bag_within_the_realizations(tmp_path):
-    for deck in ("in.bag", "in.fill"):
-        lmprun.run(INPUTS / deck, tmp_path, variables=DEMO).check()
+    lmprun.bag_and_fill(tmp_path, DEMO)
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(DEMO, v=0.015, ufinal=0.005),
                      timeout=3600).check()
     d = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True, comments="#")

@@ -113,7 +113,7 @@ def test_sand_parameter_sets(tmp_path):
     mur = float(re.search(r"variable sand_mur equal (\S+)", fit).group(1))
 
     def coeff(root, sand):
-        res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(
+        lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(
             SMALL, tbags=root, sand=sand, nsettle=10)).check()
         # the settling pair_coeff of the sand as LAMMPS ran it (variables substituted)
         log = (tmp_path / "log.lammps").read_text()

@@ -166,7 +166,6 @@ def clipped_restitution(e, R, m, E, nu, v0):
     """Restitution of a head-on Hertz collision with the law's damping when the total normal force
     is clipped at zero (limit_damping), from the equation of motion integrated to 1e-11:
     m* d'' = -max(0, 4/3 E* sqrt(R*) d^1.5 + 2 sqrt(5/6) beta sqrt(2 E* m* sqrt(R* d)) d')."""
-    import numpy as np
     from scipy.integrate import solve_ivp
     Es = E / (2 * (1 - nu ** 2))
     Rs, ms = R / 2, m / 2

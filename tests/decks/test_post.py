@@ -17,14 +17,13 @@ from tbagspost import cli, dumps, network, section, shape, shear, vtkout  # noqa
 from tbagspost.run import Run  # noqa: E402
 
 INPUTS = lmprun.ROOT / "inputs"
-SIZE = {"nx": 9, "ny": 9, "nz": 5, "tbags": lmprun.ROOT}
+SIZE = lmprun.TINY_BAG
 
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
     wd = tmp_path_factory.mktemp("postrun")
-    lmprun.run(INPUTS / "in.bag", wd, variables=SIZE).check()
-    lmprun.run(INPUTS / "in.fill", wd, variables=SIZE).check()
+    lmprun.bag_and_fill(wd)
     lmprun.run(INPUTS / "in.shear", wd, variables=dict(SIZE, v=0.02, ufinal=0.0015, du_dump=0.0005)).check()
     return Run(wd)
 

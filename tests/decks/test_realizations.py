@@ -38,14 +38,3 @@ def test_two_realizations_write_band_and_table(tmp_path):
     assert np.all(c["S_N_min"] <= c["S_N_mean"] + 1e-9) and np.all(c["S_N_mean"] <= c["S_N_max"] + 1e-9)
     assert np.any(c["S_N_std"] > 0)
     assert (out / "realizations" / "realizations.png").stat().st_size > 10000
-
-
-def test_out_never_clears_a_users_folder(tmp_path):
-    mine = tmp_path / "mine"
-    mine.mkdir()
-    (mine / "thesis.tex").write_text("keep me")
-    env = dict(os.environ, TBAGS_BUILD_DIR=os.environ.get("TBAGS_BUILD", str(lmprun.ROOT / "build")))
-    r = subprocess.run([str(lmprun.ROOT / "tbags"), "shear", "--out", str(mine)] + TINY,
-                       env=env, capture_output=True, text=True, timeout=600)
-    assert r.returncode != 0 and "is not empty and was not made by ./tbags shear" in r.stderr
-    assert (mine / "thesis.tex").read_text() == "keep me"

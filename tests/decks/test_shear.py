@@ -7,14 +7,13 @@ import pytest
 import lmprun
 
 INPUTS = lmprun.ROOT / "inputs"
-SIZE = {"nx": 9, "ny": 9, "nz": 5, "tbags": lmprun.ROOT}
+SIZE = lmprun.TINY_BAG
 
 
 @pytest.fixture(scope="module")
 def filled(tmp_path_factory):
     wd = tmp_path_factory.mktemp("tinybag")
-    lmprun.run(INPUTS / "in.bag", wd, variables=SIZE).check()
-    lmprun.run(INPUTS / "in.fill", wd, variables=SIZE).check()
+    lmprun.bag_and_fill(wd)
     return wd
 
 
@@ -167,7 +166,7 @@ def test_lammps_vtk_dumps_read_back(filled, tmp_path):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
     shutil.copy(filled / "fill.data", tmp_path)
-    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.0001)).check()
+    lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.0001)).check()
     vtps = sorted(tmp_path.glob("dump.grains_*.vtp"))
     if not vtps:
         assert "VTK" not in lmprun.run("print 'packages'", tmp_path / "h", args=("-h",)).output.split(

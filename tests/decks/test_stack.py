@@ -12,10 +12,10 @@ import pytest
 import lmprun
 
 sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
-from tbagspost import cyclic, hysteresis, stack  # noqa: E402
+from tbagspost import cyclic, stack  # noqa: E402
 
 INPUTS = lmprun.ROOT / "inputs"
-SIZE = {"nx": 9, "ny": 9, "nz": 5, "tbags": lmprun.ROOT}
+SIZE = lmprun.TINY_BAG
 PROTOCOL = dict(SIZE, amps="0.1 0.25", cycles=2, vpeak=0.03)
 G = 9.81
 
@@ -23,8 +23,7 @@ G = 9.81
 @pytest.fixture(scope="module")
 def fill(tmp_path_factory):
     wd = tmp_path_factory.mktemp("fill")
-    lmprun.run(INPUTS / "in.bag", wd, variables=SIZE).check()
-    lmprun.run(INPUTS / "in.fill", wd, variables=SIZE).check()
+    lmprun.bag_and_fill(wd)
     return wd / "fill.data"
 
 

@@ -1,0 +1,17 @@
+"""The launcher's Python side (./tbags stays bash for set-up, run, test and bench).
+
+lammps.py   the one way to run LAMMPS with the plugin: the launcher, the tests, the benchmark and
+            the calibration all call it
+presets.py  the shear presets as data: bag size, the runs from one fill, post-processing, checks
+shear.py    the preset workflow: bag, fill, the preset's runs (side by side where they fit the
+            cores), figures, checks; realizations of it; the paper preset's time estimate
+cli.py      `python3 -m tbagsrun shear ...` (__main__.py), what `./tbags shear` runs: arguments,
+            set-up, then shear.py
+"""
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+class LaunchError(Exception):
+    """Stops the launcher: a bad argument or a failed run. Printed as 'tbags: <message>'."""

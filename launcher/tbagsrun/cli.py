@@ -1,0 +1,135 @@
+"""The command line of `./tbags shear` (python3 -m tbagsrun shear ...): arguments, set-up, then the
+workflow of shear.py. `--help` prints the presets' text."""
+import os
+import shlex
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+from . import ROOT, LaunchError
+from .presets import PRESETS
+from .shear import run_preset, run_realizations
+
+USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)] [-var name value ...]
+Bag (inputs/in.bag), fill (in.fill), simple shear (in.shear), then figures. -var values override
+the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufinal, dt, seed...).
+--out DIR: write there instead of runs/<preset>/ (runs/shear-demo/ for demo).
+--realizations N: N fills of different seeds (seed, seed + 1, ...; -var seed S sets the first,
+default 4821), each with the preset's shear runs, side by side where cores allow, in
+runs/<preset>/r1 ... rN; then the mean curves with their spread and the table of peak S, S at
+5 mm, contraction and dilatancy in runs/<preset>/realizations/ (./tbags plot --realizations).
+Presets:"""
+
+
+def usage():
+    lines = [USAGE]
+    for p in PRESETS.values():
+        body = textwrap.wrap(p.help + ("" if p.realizations else " (no --realizations: hours per run)"),
+                             width=82)
+        lines.append("  %-14s %s" % (p.name + (" (default)" if p.name == "demo" else ""), body[0]))
+        lines += ["  %-14s %s" % ("", b) for b in body[1:]]
+    return "\n".join(lines)
+
+
+def positive(option, text, what="a positive number"):
+    if not text.isdigit() or int(text) < 1:
+        raise LaunchError("shear: %s needs %s" % (option, what))
+    return int(text)
+
+
+def parse(argv):
+    """-> preset, ranks, out, realizations, estimate_only, seed, variables, extra LAMMPS args."""
+    args = list(argv)
+    preset = PRESETS["demo"]
+    if args and not args[0].startswith("-"):
+        name = args.pop(0)
+        if name not in PRESETS:
+            raise LaunchError("shear: unknown preset '%s' (%s; see ./tbags shear --help)"
+                              % (name, ", ".join(PRESETS)))
+        preset = PRESETS[name]
+    ranks, out, nreal, estimate, seed = len(os.sched_getaffinity(0)), None, 1, False, 4821
+    variables, extra = {}, []
+    while args:
+        a = args.pop(0)
+        if a == "--estimate":
+            if not preset.estimate:
+                raise LaunchError("shear: --estimate is for the paper preset")
+            estimate = True
+        elif a == "--realizations":
+            nreal = positive(a, args.pop(0) if args else "")
+        elif a == "--out":
+            if not args:
+                raise LaunchError("shear: --out needs a directory")
+            out = Path(args.pop(0)).absolute()
+        elif a == "-np":
+            ranks = positive(a, args.pop(0) if args else "")
+        elif a == "-var":
+            if not args or args[0].startswith("-"):
+                raise LaunchError("shear: -var needs a name and a value")
+            name = args.pop(0)
+            values = []
+            while args and not args[0].startswith("-"):
+                values.append(args.pop(0))
+            if not values:
+                raise LaunchError("shear: -var %s needs a value" % name)
+            if name == "seed":
+                seed = positive("-var seed", values[0], "a positive integer")
+            else:
+                variables[name] = values if len(values) > 1 else values[0]
+        elif a.startswith("--"):
+            raise LaunchError("shear: unknown option %s (./tbags shear --help)" % a)
+        else:    # a LAMMPS switch and its words
+            extra.append(a)
+            while args and not args[0].startswith("-"):
+                extra.append(args.pop(0))
+    if nreal > 1 and not preset.realizations:
+        raise LaunchError("shear: --realizations is not for the %s preset (hours or days per "
+                          "realization): run it with -var seed S and --out DIR per seed" % preset.name)
+    return preset, ranks, out, nreal, estimate, seed, variables, extra
+
+
+def set_up():
+    """Build the plugin if needed (./tbags setup --plugin-only) and take lmp's and the plugin's
+    places from the build's tbags-env.sh."""
+    subprocess.run([str(ROOT / "tbags"), "setup", "--plugin-only"], check=True)
+    build = Path(os.environ.get("TBAGS_BUILD_DIR") or ROOT / "build")
+    for line in (build / "tbags-env.sh").read_text().splitlines():
+        if "=" in line:
+            key, value = line.split("=", 1)
+            os.environ[key] = shlex.split(value)[0] if value else ""
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+
+def shear(argv):
+    if argv and argv[0] in ("--help", "-h", "help"):
+        print(usage())
+        return
+    preset, ranks, out, nreal, estimate, seed, variables, extra = parse(argv)
+    if extra:
+        raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(extra))
+    out = out or ROOT / "runs" / preset.folder
+    set_up()
+
+    def say(line):
+        print(line, flush=True)
+    if nreal > 1:
+        run_realizations(preset, nreal, seed, ranks, out, variables, say)
+    else:
+        run_preset(preset, ranks, out, dict(variables, seed=seed), say, estimate_only=estimate)
+
+
+def main(argv):
+    if not argv or argv[0] != "shear":
+        sys.exit("usage: python3 -m tbagsrun shear [PRESET] [options] (./tbags shear --help)")
+    try:
+        shear(argv[1:])
+    except LaunchError as e:
+        sys.exit("tbags: %s" % e)
+    except subprocess.CalledProcessError:
+        sys.exit(1)    # the set-up said why
+    except KeyboardInterrupt:
+        sys.exit("tbags: interrupted")
+    except BrokenPipeError:    # the output piped into a reader that stopped (head)
+        sys.stdout = open(os.devnull, "w")
+

@@ -1,0 +1,92 @@
+"""The shear presets as data.
+
+A preset is a bag (nx x ny x nz particles on the 5 mm lattice of inputs/in.bag), filled once
+(inputs/in.fill), and one or more runs from that fill (inputs/in.shear or in.cyclic, each in a
+subfolder, or in the fill's own folder), side by side or one after the other; then the
+post-processing and the checks. Every run gets the bag's size; the user's -var values override
+the preset's. shear.py runs them.
+"""
+from dataclasses import dataclass, field
+
+LOADS = (5500, 3730, 1960)    # the paper's three vertical loads (N on its 395 x 395 mm bag)
+DEMO_BAG = dict(nx=21, ny=21, nz=7)
+# the paper's plan-to-height ratio: inner 130 x 130 x 25 mm (5.2) against 395 x 395 x 75 mm (5.27);
+# 5 mm of shear is the paper's 20 % average shear strain
+TRENDS_BAG = dict(nx=28, ny=28, nz=7)
+PAPER_BAG = dict(nx=81, ny=81, nz=17)
+
+
+@dataclass(frozen=True)
+class Run:
+    folder: str          # under the preset's output folder; "" = the fill's own folder
+    deck: str            # inputs/in.<deck>
+    variables: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Preset:
+    name: str
+    folder: str                      # runs/<folder> unless --out
+    bag: dict
+    runs: tuple
+    side_by_side: bool               # the runs at once, the ranks shared among them
+    post: str                        # "figures" (S-u, shape, network, ParaView), "cyclic", "stack"
+    check: str = ""                  # "trends", "speed" (inputs/check_trends.py)
+    defaults_said: dict = field(default_factory=dict)    # variable -> line printed when it is the preset's
+    realizations: bool = True        # --realizations offered (not for runs of hours or days)
+    estimate: bool = False           # measures a short stretch first and projects the time
+    help: str = ""
+
+
+def per_load(deck, **variables):
+    return tuple(Run("F%d" % f, deck, dict(variables, Fpaper=f)) for f in LOADS)
+
+
+PRESETS = {p.name: p for p in (
+    Preset("demo", "shear-demo", DEMO_BAG,
+           (Run("", "shear", dict(v=0.015, ufinal=0.005)),), False, "figures",
+           help="the main job: 21 x 21 x 7 bag (105 x 105 x 35 mm), the paper's 5.5 kN mean stress "
+                "(F_v scaled by plan area), sheared at 15 mm/s to u = 5 mm (inertial number 8e-4 < "
+                "1e-3); 2-3 minutes on 2 cores (6 with the first LAMMPS build). -> runs/shear-demo/"),
+    Preset("trends", "trends", TRENDS_BAG, per_load("shear", v=0.01, ufinal=0.005), True, "figures",
+           check="trends",
+           help="28 x 28 x 7 bag, the paper's plan-to-height ratio (inner 130 x 130 x 25 mm, 5.2; the "
+                "paper's 395 x 395 x 75 mm, 5.27), at the three loads (5.50, 3.73, 1.96 kN scaled by "
+                "plan area; side by side), 10 mm/s to 5 mm, the paper's 20 % shear strain (inertial "
+                "number 9e-4 at 1.96 kN), then inputs/check_trends.py asserts the paper's findings; "
+                "with --realizations N in every realization. -> runs/trends/"),
+    Preset("quasistatic", "quasistatic", TRENDS_BAG,
+           tuple(Run("v%g" % v, "shear", dict(Fpaper=1960, v=v, ufinal=0.005)) for v in (0.01, 0.005)),
+           True, "figures", check="speed",
+           help="the trends bag at 1.96 kN (its highest inertial number) at 10 and 5 mm/s to 5 mm: the "
+                "S-u curves must agree (the speed does not drive the result). -> runs/quasistatic/"),
+    Preset("cyclic", "cyclic", DEMO_BAG, per_load("cyclic"), True, "cyclic", realizations=False,
+           help="the demo bag at the three loads' stresses (side by side), cycled with F_v held: "
+                "amplitudes 0.25 0.5 1 2 3 5 mm, 3 sine cycles each, every amplitude at the same "
+                "15 mm/s peak plate speed (in.cyclic: -var amps \"0.25 1 5\" -var cycles N -var wave "
+                "triangle -var vpeak V or -var freq F); then the loops, K_eq/K_0 and h_eq curves, "
+                "Ramberg-Osgood fit and report.md (tbagspost/cyclic.py). Hours on 2 cores; each load "
+                "checkpoints after every amplitude. -> runs/cyclic/"),
+    Preset("stack", "stack", DEMO_BAG,
+           (Run("single", "cyclic", dict(Fpaper=3730)),
+            Run("stack", "cyclic", dict(Fpaper=3730, bags=2, film_mu=0.1))), True, "stack",
+           defaults_said={"film_mu": "film friction 0.1 (a geotextile on UHMWPE; -var film_mu MU for yours)"},
+           realizations=False,
+           help="the T-BAGS system: two demo bags (one fill) stacked with a polymer film sheet between "
+                "them (fix wall/gran/servo film: 0.5 mm, free to move; its friction against the bags "
+                "-var film_mu, 0.1 unless given: a geotextile on UHMWPE, doc/fix_wall_gran_servo.rst; "
+                "-var film_mu_below 1e10 fixes it to the lower bag), at 3.73 kN's stress with the "
+                "cyclic protocol, and one bag of the same fill beside it; then the cyclic analysis of "
+                "both and the split of the plate's displacement into bag shear and film slip "
+                "(tbagspost/stack.py). Hours on 2 cores; checkpoints after every amplitude. "
+                "-> runs/stack/{stack,single,figures}"),
+    Preset("paper", "paper", PAPER_BAG, per_load("shear", v=0.004, ufinal=0.015), False, "figures",
+           realizations=False, estimate=True,
+           help="the full 81 x 81 x 17 bag (17,922 particles, 35,840 bonds, 97,130 grains) at the three "
+                "loads, 4 mm/s to u = 15 mm: days of CPU, run it with MPI on a cluster. It first "
+                "measures a short stretch and prints the projected time at 1, 2 and N ranks; "
+                "`paper --estimate` stops there. -> runs/paper/"),
+)}
+
+# the paper preset's estimate: the demo bag's shear stage for a short stretch at these settings
+ESTIMATE_RUN = Run("", "shear", dict(v=0.004, ufinal=0.0002))

@@ -1,0 +1,250 @@
+"""The shear presets' workflow (the presets are data in presets.py).
+
+One realization: the bag (inputs/in.bag) and its fill (in.fill) in the output folder, then the
+preset's runs from that fill (side by side, the ranks shared, or one after the other), each a
+LAMMPS stage with its log (log.<deck>) and screen output (screen.<deck>.txt) in its folder; then
+the figures (postprocess/tbagspost) and the preset's checks (inputs/check_trends.py).
+Realizations: the same with fills of seeds S, S + 1, ... in r1, r2, ..., as many at once as the
+cores allow, then their spread (tbagspost --realizations).
+The paper preset first measures a short stretch of the demo bag and projects its time
+(inputs/project_time.py).
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from . import ROOT, LaunchError, lammps
+from .presets import DEMO_BAG, ESTIMATE_RUN
+
+# the lines of a stage's screen output that the launcher repeats (the decks' summaries)
+SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
+MARKER = ".tbags-run"    # in every output folder the launcher made (so --out never clears a user's)
+
+
+def python(args, stdout=None, what="post-processing"):
+    """Debian's Python on a module or script of the repository, postprocess/ on its path."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "postprocess")] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
+    proc = subprocess.run([sys.executable] + [str(a) for a in args], env=env, stdout=stdout,
+                          stderr=subprocess.PIPE, text=True)
+    return proc.returncode == 0, proc.stderr
+
+
+def stage(folder, deck, ranks, variables, say):
+    """inputs/in.<deck> in folder with `ranks` ranks; says its summary lines; stops if it fails."""
+    say("tbags shear: %s in %s ..." % (deck, folder))
+    res = lammps.run(ROOT / "inputs" / ("in." + deck), folder, ranks, variables,
+                     log="log." + deck, screen="screen.%s.txt" % deck)
+    lines = res.output.splitlines()
+    if res.returncode != 0:
+        errors = [line for line in lines if "ERROR" in line] or lines[-20:]
+        raise LaunchError("\n".join(errors) + "\nshear: the %s stage failed (see %s)"
+                          % (deck, Path(folder) / ("log." + deck)))
+    for line in lines:
+        if SUMMARY.match(line):
+            say("  " + line)
+
+
+def fresh_dir(folder):
+    """An empty folder for a run's outputs. A non-empty folder outside runs/ must be one the
+    launcher made (its marker), so that --out never clears a folder of the user's."""
+    folder = Path(folder)
+    if folder.is_dir() and any(folder.iterdir()) and not (folder / MARKER).exists() and \
+            (ROOT / "runs") not in folder.resolve().parents:
+        raise LaunchError("shear: %s is not empty and was not made by ./tbags shear; choose another "
+                          "--out" % folder)
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    (folder / MARKER).touch()
+
+
+def side_by_side(jobs, say):
+    """Run the callables jobs[k](say) at once; each one's lines are said together, in order, when
+    all have finished; stops if one failed."""
+    buffers = [[] for _ in jobs]
+    with ThreadPoolExecutor(len(jobs)) as pool:
+        futures = [pool.submit(job, buf.append) for job, buf in zip(jobs, buffers)]
+    failed = []
+    for fut, buf in zip(futures, buffers):
+        for line in buf:
+            say(line)
+        if fut.exception() is not None:
+            if not isinstance(fut.exception(), LaunchError):
+                raise fut.exception()
+            say(str(fut.exception()))
+            failed.append(fut.exception())
+    if failed:
+        raise LaunchError("shear: %d of %d runs failed (above)" % (len(failed), len(jobs)))
+
+
+def run_folder(out, run):
+    return Path(out) / run.folder if run.folder else Path(out)
+
+
+def run_variables(preset, run, user):
+    """A run's -var values: the bag's size, the run's own, the fill from the folder above for a
+    run in a subfolder, then the user's (which win)."""
+    variables = dict(preset.bag, **run.variables)
+    if run.folder:
+        variables["fill"] = "../fill.data"
+    variables.update(user)
+    return variables
+
+
+def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False):
+    """One realization of a preset into `out`; user: the -var values given (they win)."""
+    t0 = time.time()
+    out = Path(out)
+    if preset.estimate:
+        out.mkdir(parents=True, exist_ok=True)
+        estimate_paper(out / "estimate", ranks, say)
+        if estimate_only:
+            return
+    else:
+        fresh_dir(out)
+    for name, line in preset.defaults_said.items():
+        if name not in user:
+            say("tbags shear %s: %s" % (preset.name, line))
+    fill_vars = dict(preset.bag, **user)
+    stage(out, "bag", ranks, fill_vars, say)
+    stage(out, "fill", ranks, fill_vars, say)
+
+    def job(run, r):
+        return lambda s: stage(run_folder(out, run), run.deck, r, run_variables(preset, run, user), s)
+
+    if preset.side_by_side and len(preset.runs) > 1:
+        each = max(1, ranks // len(preset.runs))
+        say("tbags shear: %s side by side, %d rank(s) each ..."
+            % (", ".join(r.folder for r in preset.runs), each))
+        side_by_side([job(r, each) for r in preset.runs], say)
+    else:
+        for r in preset.runs:
+            job(r, ranks)(say)
+    post_process(preset, out, say)
+    check(preset, out, say, in_realizations)
+    say("tbags shear %s: done in %d s. Outputs in %s:" % (preset.name, time.time() - t0, out))
+    files = [p for p in list(out.glob("*")) + list(out.glob("*/*")) if p.is_file() and not p.name.startswith("dump.")]
+    for p in sorted(files):
+        say("  %s" % p)
+    say("  + %d dump files (dump.grains.*, dump.contacts.*, dump.bonds.*, *.vtp; every 1 mm of u)"
+        % len(list(out.rglob("dump.*"))))
+
+
+def post_process(preset, out, say):
+    runs = [run_folder(out, r) for r in preset.runs]
+    with open(out / "figures.txt", "w") as fh:
+        if preset.post == "figures":
+            ok, err = python(["-m", "tbagspost"] + runs + ["--vtk"], fh)
+        elif preset.post == "cyclic":
+            ok, err = python(["-m", "tbagspost"] + runs, fh)
+        else:    # stack: the single bag and the stack
+            ok, err = python(["-m", "tbagspost"] + runs + ["-o", out / "figures"], fh)
+    if not ok:
+        raise LaunchError("%s\nshear: post-processing failed (./tbags plot %s)"
+                          % (err.strip(), " ".join(str(r) for r in runs)))
+    if preset.post == "figures":
+        say("tbags shear: figures in RUN/figures/ (S-u and w-u, deformed shape, contact network%s),"
+            % (", and %s/figures/shear-overlay.png" % out if len(runs) > 1 else ""))
+        say("  ParaView series in RUN/paraview/*.pvd; the numbers behind the figures: %s/figures.txt" % out)
+    else:
+        report = (out / "figures" / "report.md").read_text().splitlines()
+        head = "## Ramberg" if preset.post == "cyclic" else "## Stack"
+        start = next((k for k, line in enumerate(report) if line.startswith(head)), len(report))
+        for line in report[start:]:
+            if not line.startswith("wrote"):
+                say(line)
+
+
+def check(preset, out, say, in_realizations):
+    if not preset.check:
+        return
+    args = [out] if preset.check == "trends" else ["--speed"] + [run_folder(out, r) for r in preset.runs]
+    proc = subprocess.run([sys.executable, ROOT / "inputs" / "check_trends.py"] + args,
+                          capture_output=True, text=True)
+    for line in (proc.stdout + proc.stderr).splitlines():
+        say(line)
+    if proc.returncode != 0:
+        if preset.check == "speed":
+            raise LaunchError("quasistatic: the S-u curves differ (above)")
+        if not in_realizations:    # in realizations, the summary's check decides
+            raise LaunchError("trends: a finding did not hold (above)")
+
+
+def run_realizations(preset, n, seed, ranks, out, user, say):
+    """n realizations of a preset (fills of seeds seed, seed + 1, ...) in out/r1 ... out/rn, as
+    many at once as the cores allow, then their spread in out/realizations."""
+    t0 = time.time()
+    out = Path(out)
+    fresh_dir(out)
+    per = len(preset.runs) if preset.side_by_side else 1    # runs of one realization at once
+    slots = min(max(1, ranks // per), n)
+    each = max(1, ranks // slots)
+    say("tbags shear %s: %d realizations (seeds %d to %d), %d at a time with %d rank(s) each ..."
+        % (preset.name, n, seed, seed + n - 1, slots, each))
+
+    def one(k):
+        with open(out / ("r%d.log" % k), "w") as log:
+            def say_k(line):
+                print(line, file=log, flush=True)
+            try:
+                run_preset(preset, each, out / ("r%d" % k), dict(user, seed=seed + k - 1), say_k,
+                           in_realizations=True)
+            except LaunchError as e:
+                say_k("tbags: %s" % e)
+                return False
+        say("  realization r%d done (%d s)" % (k, time.time() - t0))
+        return True
+
+    with ThreadPoolExecutor(slots) as pool:
+        ok = list(pool.map(one, range(1, n + 1)))
+    for k in range(1, n + 1):
+        say("-- r%d:" % k)
+        for line in (out / ("r%d.log" % k)).read_text().splitlines():
+            if re.match(r"^  (FILL |SHEARED|COMPRESSED)", line) or "check" in line:
+                say(line)
+    if not all(ok):
+        raise LaunchError("shear: a realization failed (its log: %s/r*.log)" % out)
+    runs = [run_folder(out / ("r%d" % k), r) for k in range(1, n + 1) for r in preset.runs]
+    ok, err = python(["-m", "tbagspost"] + runs + ["--only", "none", "--realizations", "-o",
+                                                   out / "realizations"])
+    if not ok:
+        raise LaunchError("%s\nshear: the realizations' summary failed" % err.strip())
+    say("tbags shear %s: %d realizations done in %d s; spread in %s/realizations/"
+        % (preset.name, n, time.time() - t0, out))
+    if preset.check == "trends":
+        proc = subprocess.run([sys.executable, ROOT / "inputs" / "check_trends.py", out],
+                              capture_output=True, text=True)
+        (out / "realizations" / "check.txt").write_text(proc.stdout)
+        for line in (proc.stdout + proc.stderr).splitlines():
+            say(line)
+        if proc.returncode != 0:
+            raise LaunchError("trends: a finding did not hold in a realization (above; "
+                              "%s/realizations/check.txt)" % out)
+
+
+def estimate_paper(folder, ranks, say):
+    """The shear stage's cost per particle-step measured on the demo bag over a short stretch at
+    1, 2 and `ranks` ranks (those this machine has), projected to the paper's bag and protocol."""
+    counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
+    say("tbags shear paper: measuring a short stretch (demo bag, ranks: %s) ..."
+        % " ".join(map(str, counts)))
+    folder = Path(folder)
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    quiet = lambda line: None    # noqa: E731
+    stage(folder, "bag", counts[-1], DEMO_BAG, quiet)
+    stage(folder, "fill", counts[-1], DEMO_BAG, quiet)
+    for r in counts:
+        stage(folder / ("np%d" % r), ESTIMATE_RUN.deck, r,
+              dict(DEMO_BAG, fill="../fill.data", **ESTIMATE_RUN.variables), quiet)
+    proc = subprocess.run([sys.executable, ROOT / "inputs" / "project_time.py", folder,
+                           "--ranks", str(ranks)], capture_output=True, text=True)
+    for line in (proc.stdout + proc.stderr).splitlines():
+        say(line)
+    if proc.returncode != 0:
+        raise LaunchError("paper: the projection failed (above)")
