@@ -1,10 +1,13 @@
 /* ----------------------------------------------------------------------
    T-BAGS DEM toolkit (tbags plugin for LAMMPS)
    bond_style bpm/yarn: adapter between BondBPM (breaking, bond history, special lists,
-   store/local) and the yarn law (law/yarn_law.h).
+   store/local) and the yarn law (law/yarn_law.h), run over batches of bonds of one type
+   (law/yarn_chain.h): gather, the law in SIMD lanes, then history, breaks and forces in
+   bond-list order.
 ------------------------------------------------------------------------- */
 
 #include "bond_bpm_yarn.h"
+#include "simd_target.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -22,6 +25,28 @@
 
 using namespace LAMMPS_NS;
 namespace yarn = tbags::yarn;
+
+// the chain over a batch, built for the baseline and for AVX2 (simd_target.h); the same bits
+namespace {
+template <bool UPDATE> void chain_baseline(const yarn::Params &p, yarn::Batch &b, int n, double dt)
+{
+  yarn::chain<UPDATE>(p, b, n, dt);
+}
+#ifdef TBAGS_HAVE_AVX2_CLONE
+template <bool UPDATE>
+TBAGS_TARGET_AVX2 void chain_avx2(const yarn::Params &p, yarn::Batch &b, int n, double dt)
+{
+  yarn::chain<UPDATE>(p, b, n, dt);
+}
+#endif
+void run_chain(const yarn::Params &p, yarn::Batch &b, int n, double dt, bool integrate, bool avx2)
+{
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  if (avx2) return integrate ? chain_avx2<true>(p, b, n, dt) : chain_avx2<false>(p, b, n, dt);
+#endif
+  return integrate ? chain_baseline<true>(p, b, n, dt) : chain_baseline<false>(p, b, n, dt);
+}
+}    // namespace
 
 static const char *STYLE = "Bond style bpm/yarn";
 
@@ -56,14 +81,29 @@ void BondBPMYarn::allocate()
 
 /* ----------------------------------------------------------------------
    bond_style bpm/yarn [overlay/pair yes|no] [break yes|no] [store/local ...]
+                       [kernel auto|baseline]
 ------------------------------------------------------------------------- */
 
 void BondBPMYarn::settings(int narg, char **arg)
 {
   BondBPM::settings(narg, arg);
-  for (int i : leftover_iarg)
-    error->all(FLERR, "{}: unknown keyword '{}'; use overlay/pair, break or store/local", STYLE,
-               arg[i]);
+  // BondBPM leaves the words it does not know, one by one: ours is "kernel" and its value
+  std::string kernel = "auto";
+  for (size_t k = 0; k < leftover_iarg.size(); k++) {
+    const int i = leftover_iarg[k];
+    if (strcmp(arg[i], "kernel") == 0) {
+      if (k + 1 >= leftover_iarg.size() || leftover_iarg[k + 1] != i + 1)
+        error->all(FLERR, "{}: kernel needs a value: auto or baseline", STYLE);
+      kernel = arg[i + 1];
+      if (kernel != "auto" && kernel != "baseline")
+        error->all(FLERR, "{}: kernel {} is not known; use auto or baseline", STYLE, kernel);
+      k++;
+    } else {
+      error->all(FLERR, "{}: unknown keyword '{}'; use overlay/pair, break, store/local or kernel",
+                 STYLE, arg[i]);
+    }
+  }
+  kernel_baseline = kernel == "baseline";
 }
 
 void BondBPMYarn::coeff(int narg, char **arg)
@@ -82,6 +122,16 @@ void BondBPMYarn::coeff(int narg, char **arg)
 void BondBPMYarn::init_style()
 {
   BondBPM::init_style();
+  // the chain's build: AVX2 where the CPU has it, unless kernel baseline (also after
+  // read_restart, which does not call settings())
+#ifdef TBAGS_HAVE_AVX2_CLONE
+  const int avx2 = !kernel_baseline && __builtin_cpu_supports("avx2");
+#else
+  const int avx2 = 0;
+#endif
+  if (comm->me == 0 && avx2 != kernel_avx2)
+    utils::logmesg(lmp, "{}: batch kernel {}\n", STYLE, avx2 ? "avx2" : "baseline");
+  kernel_avx2 = avx2;
   if (!atom->quat_flag || !atom->radius_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "{} requires atom_style bpm/sphere (radius, omega, torque, quat); for other "
                "atom styles use bond_style yarn", STYLE);
@@ -126,22 +176,26 @@ void BondBPMYarn::compute(int eflag, int vflag)
   if (hybrid_flag) fix_bond_history->compress_history();
   ev_init(eflag, vflag);
 
-  double **x = atom->x;
-  double **f = atom->f;
-  double **torque = atom->torque;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
   const tagint *tag = atom->tag;
   int **bondlist = neighbor->bondlist;
   const int nbondlist = neighbor->nbondlist;
-  const int nlocal = atom->nlocal;
-  const int newton_bond = force->newton_bond;
   double **bondstore = fix_bond_history->bondstore;
-  const bool update_hist = update->setupflag == 0;
+  if (!batch) batch.reset(new yarn::Batch);
+  yarn::Batch &b = *batch;
 
-  yarn::Result o;
+  // runs of up to Batch::N consecutive bonds of one type go through the law together; their
+  // forces are applied in list order (the sums of a bond-by-bond loop, bit for bit)
+  int nb = 0, btype = 0;
   for (int n = 0; n < nbondlist; n++) {
-    if (bondlist[n][2] <= 0) continue;
-    int i1 = bondlist[n][0], i2 = bondlist[n][1];
     const int type = bondlist[n][2];
+    if (type <= 0) continue;
+    if (nb > 0 && type != btype) {
+      flush(nb, btype);
+      nb = 0;
+    }
+    btype = type;
+    int i1 = bondlist[n][0], i2 = bondlist[n][1];
     // order by tag: both copies of a bond across ranks (newton off) compute the same numbers
     if (tag[i2] < tag[i1]) std::swap(i1, i2);
     double *hist = bondstore[n];
@@ -150,33 +204,67 @@ void BondBPMYarn::compute(int eflag, int vflag)
       hist[yarn::R0] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       for (int k = 1; k < yarn::NHISTORY; k++) hist[k] = 0.0;
     }
-    const yarn::Params &p = coeffs[type].p;
-    yarn::compute(p, bond_state(i1, i2), hist, update_hist, o);
-    if (o.broken && break_flag) {
+    for (int k = 0; k < 3; k++) {
+      b.xi[k][nb] = x[i1][k], b.xj[k][nb] = x[i2][k];
+      b.vi[k][nb] = v[i1][k], b.vj[k][nb] = v[i2][k];
+      b.wi[k][nb] = omega[i1][k], b.wj[k][nb] = omega[i2][k];
+    }
+    for (int k = 0; k < yarn::NHISTORY; k++) b.h[k][nb] = hist[k];
+    lane_bond[nb] = n;
+    lane_i[nb] = i1;
+    lane_j[nb] = i2;
+    if (++nb == yarn::Batch::N) {
+      flush(nb, btype);
+      nb = 0;
+    }
+  }
+  if (nb > 0) flush(nb, btype);
+  if (hybrid_flag) fix_bond_history->uncompress_history();
+}
+
+/* ----------------------------------------------------------------------
+   the law over the batch's nb bonds (of type btype), then, in list order: history back,
+   breaks, forces and torques, energy and virial
+------------------------------------------------------------------------- */
+
+void BondBPMYarn::flush(int nb, int btype)
+{
+  yarn::Batch &b = *batch;
+  const yarn::Params &p = coeffs[btype].p;
+  run_chain(p, b, nb, update->dt, update->setupflag == 0, kernel_avx2);
+  double **x = atom->x, **f = atom->f, **torque = atom->torque;
+  int **bondlist = neighbor->bondlist;
+  double **bondstore = fix_bond_history->bondstore;
+  const int nlocal = atom->nlocal;
+  const int newton_bond = force->newton_bond;
+  for (int l = 0; l < nb; l++) {
+    const int n = lane_bond[l], i1 = lane_i[l], i2 = lane_j[l];
+    double *hist = bondstore[n];
+    for (int k = 0; k < yarn::NHISTORY; k++) hist[k] = b.h[k][l];
+    if (b.broken[l] && break_flag) {
       bondlist[n][2] = 0;
       process_broken(i1, i2);
       continue;
     }
     if (newton_bond || i1 < nlocal) {
       for (int k = 0; k < 3; k++) {
-        f[i1][k] += o.f[k];
-        torque[i1][k] += o.ti[k];
+        f[i1][k] += b.f[k][l];
+        torque[i1][k] += b.ti[k][l];
       }
     }
     if (newton_bond || i2 < nlocal) {
       for (int k = 0; k < 3; k++) {
-        f[i2][k] -= o.f[k];
-        torque[i2][k] += o.tj[k];
+        f[i2][k] -= b.f[k][l];
+        torque[i2][k] += b.tj[k][l];
       }
     }
     if (evflag) {
-      const double ebond = eflag ? yarn::axial_energy(p, o.eps, hist[yarn::R0]) : 0.0;
+      const double ebond = eflag_either ? yarn::axial_energy(p, b.eps[l], hist[yarn::R0]) : 0.0;
       // ev_tally_xyz: del = x1 - x2 and the force on atom 1
-      ev_tally_xyz(i1, i2, nlocal, newton_bond, ebond, o.f[0], o.f[1], o.f[2],
+      ev_tally_xyz(i1, i2, nlocal, newton_bond, ebond, b.f[0][l], b.f[1][l], b.f[2][l],
                    x[i1][0] - x[i2][0], x[i1][1] - x[i2][1], x[i1][2] - x[i2][2]);
     }
   }
-  if (hybrid_flag) fix_bond_history->uncompress_history();
 }
 
 /* ----------------------------------------------------------------------

@@ -1,7 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    T-BAGS DEM toolkit (tbags plugin for LAMMPS)
    bond_style bpm/yarn: tension-only nonlinear yarn bond with bending, twisting and breaking,
-   on LAMMPS BPM's BondBPM base. The physics is law/yarn_law.h.
+   on LAMMPS BPM's BondBPM base. The physics is law/yarn_law.h, run over batches of bonds by
+   law/yarn_chain.h.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_BOND_BPM_YARN_H
@@ -9,9 +10,11 @@
 
 #include "atom.h"
 #include "bond_bpm.h"
+#include "law/yarn_chain.h"
 #include "update.h"
 #include "yarn_table.h"
 
+#include <memory>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -32,6 +35,12 @@ class BondBPMYarn : public BondBPM {
  protected:
   std::vector<YarnCoeff> coeffs;    // per bond type
   int warned_integrator = 0;
+  // the batch of bonds run through the law together, and where each lane's bond is
+  std::unique_ptr<tbags::yarn::Batch> batch;
+  int lane_bond[tbags::yarn::Batch::N], lane_i[tbags::yarn::Batch::N], lane_j[tbags::yarn::Batch::N];
+  bool kernel_baseline = false;    // keyword kernel baseline: never the AVX2 build
+  int kernel_avx2 = -1;            // the build init_style() chose (1: AVX2)
+  void flush(int nb, int btype);
   void allocate();
   void store_data();
   bool bond_history(int i, int j, double *hist);

@@ -53,7 +53,7 @@ inline V3 select(bool c, const V3 &a, const V3 &b)
 // s = |a| / |b| = (1 - x)^(-1/2), x = (a.n)^2 / |a|^2.
 // onto_plane_exact(): s = sqrt(|a|^2 / |b|^2), one square root and one division; 0 when
 // nothing is left.
-inline V3 onto_plane_exact(const V3 &a, const V3 &n)
+TBAGS_INLINE V3 onto_plane_exact(const V3 &a, const V3 &n)
 {
   const double an = dot(a, n);
   const double mag2 = dot(a, a);
@@ -74,8 +74,9 @@ TBAGS_INLINE V3 onto_plane_series(const V3 &a, const V3 &n, bool &small)
   small = x < TILT_SERIES;
   return (1.0 + x * (0.5 + 0.375 * x)) * (a - an * n);
 }
-// onto_plane(): the series for a small tilt, else exact
-inline V3 onto_plane(const V3 &a, const V3 &n)
+// onto_plane(): the series for a small tilt, else exact (forced inline: the bond law's lanes
+// vectorise over it)
+TBAGS_INLINE V3 onto_plane(const V3 &a, const V3 &n)
 {
   bool small;
   const V3 b = onto_plane_series(a, n, small);

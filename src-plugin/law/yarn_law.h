@@ -16,6 +16,8 @@
    Forces and moments act at the bond centre; on i: F, torque M + (r/2) n x F; on j: -F,
    torque -M + (r/2) n x F, with n the unit vector from i to j (momentum and angular momentum
    are conserved).
+   The stages (kinematics, integrate, axial_force, forces) are chained once, over one bond or a
+   batch, in law/yarn_chain.h.
 */
 #ifndef TBAGS_LAW_YARN_LAW_H
 #define TBAGS_LAW_YARN_LAW_H
@@ -131,79 +133,74 @@ inline double axial_energy(const Params &p, double eps, double r0)
   return scale * r0 * p.curve->integral(eps);
 }
 
-struct Bond {
-  const double *xi, *xj, *vi, *vj, *wi, *wj;
-  double dt;
-};
+// The law's stages for one bond, as values (law/yarn_chain.h chains them over one bond or a
+// batch). rows: i's and j's positions, velocities and angular velocities.
 
-struct Result {
-  double f[3];      // force on i (j gets -f)
-  double ti[3], tj[3];
-  double eps, fax;  // strain and axial force (tension positive)
-  double r;
-  bool broken;
+// the incremental springs' constants times r0 (k_s = ks / r0, ...), from the same expressions
+// in the same order as k_s = kappa G A / r0, k_b = E I / r0, k_t = G J / r0
+struct Springs {
+  double ks, kb, kt;
 };
+inline Springs springs(const Params &p)
+{
+  const double G = p.shear_modulus();
+  return {p.kappa * G * p.area(), p.E * p.inertia(), G * p.polar()};
+}
 
-// one bond step; hist holds NHISTORY doubles (hist[R0] > 0). Inlined into the bond loops: the
-// result stays in registers (15 % less bond time on the bag decks than a call)
-TBAGS_INLINE void compute(const Params &p, const Bond &b, double *hist, bool update, Result &o)
+// stage 1: geometry and the relative motion of the bond's ends, at the bond centre
+struct Motion {
+  vec::V3 n;       // unit vector from i to j
+  vec::V3 vs;      // sliding velocity of j's end relative to i's, normal to n
+  vec::V3 wrel;    // w_j - w_i
+  vec::V3 wb;      // its bending part (normal to n)
+  double r, eps;   // length, strain
+  double vn, wt;   // stretching rate, twisting rate
+};
+TBAGS_INLINE Motion kinematics(const vec::V3 &xi, const vec::V3 &xj, const vec::V3 &vi,
+                               const vec::V3 &vj, const vec::V3 &wi, const vec::V3 &wj, double r0)
 {
   using namespace vec;
-  double dx[3];
-  sub(b.xj, b.xi, dx);
-  const double r = len(dx);
-  const double n[3] = {dx[0] / r, dx[1] / r, dx[2] / r};
-  const double r0 = hist[R0];
-  const double eps = strain(r, r0);
-  o.r = r;
-  o.eps = eps;
-  o.broken = breaks(p, eps);
+  Motion m;
+  const V3 dx = xj - xi;
+  m.r = std::sqrt(dot(dx, dx));
+  m.n = V3{dx.x / m.r, dx.y / m.r, dx.z / m.r};
+  m.eps = strain(m.r, r0);
+  const double h = 0.5 * m.r;
+  const V3 vrel = (vj - vi) - h * (cross(wj, m.n) + cross(wi, m.n));
+  m.vn = dot(vrel, m.n);
+  m.vs = vrel - m.vn * m.n;
+  m.wrel = wj - wi;
+  m.wt = dot(m.wrel, m.n);
+  m.wb = m.wrel - m.wt * m.n;
+  return m;
+}
 
-  // relative velocity of j's bond end with respect to i's, at the bond centre
-  const double h = 0.5 * r;
-  double wixn[3], wjxn[3];
-  cross(b.wi, n, wixn);
-  cross(b.wj, n, wjxn);
-  double vrel[3];
-  for (int k = 0; k < 3; k++) vrel[k] = b.vj[k] - b.vi[k] - h * (wjxn[k] + wixn[k]);
-  const double vn = dot(vrel, n);
-  double vs[3];
-  for (int k = 0; k < 3; k++) vs[k] = vrel[k] - vn * n[k];
-  double wrel[3];
-  sub(b.wj, b.wi, wrel);
-  const double wt = dot(wrel, n);
-  double wb[3];
-  for (int k = 0; k < 3; k++) wb[k] = wrel[k] - wt * n[k];
+// stage 2 (integrating steps only): shear force fs and bending moment mb turned into the plane
+// normal to the bond, then the increments k_s v_s dt, k_b w_b dt, k_t w_t dt (mt: twisting moment)
+TBAGS_INLINE void integrate(const Springs &k, const Motion &m, double r0, double dt, vec::V3 &fs,
+                            vec::V3 &mb, double &mt)
+{
+  using namespace vec;
+  fs = onto_plane(fs, m.n);
+  mb = onto_plane(mb, m.n);
+  const double ks = k.ks / r0, kb = k.kb / r0, kt = k.kt / r0;
+  fs = fs + dt * (ks * m.vs);
+  mb = mb + dt * (kb * m.wb);
+  mt = mt + kt * m.wt * dt;
+}
 
-  // incremental shear force and bending moment (kept in the plane normal to the bond)
-  double *fs = hist + FS, *mb = hist + MB;
-  const double G = p.shear_modulus();
-  if (update) {
-    rotate_onto_plane(fs, n);
-    rotate_onto_plane(mb, n);
-    const double ks = p.kappa * G * p.area() / r0;
-    const double kb = p.E * p.inertia() / r0;
-    const double kt = G * p.polar() / r0;
-    for (int k = 0; k < 3; k++) {
-      fs[k] += ks * vs[k] * b.dt;
-      mb[k] += kb * wb[k] * b.dt;
-    }
-    hist[MT] += kt * wt * b.dt;
-  }
-
-  o.fax = axial_force(p, eps, hist + EPSMAX, update);
-  const double fn = axial_damped(p, o.fax, eps, vn);
-  double m[3];
-  for (int k = 0; k < 3; k++) {
-    o.f[k] = fn * n[k] + fs[k] + p.gs * vs[k];
-    m[k] = mb[k] + hist[MT] * n[k] + p.gr * wrel[k];
-  }
-  double nxf[3];
-  cross(n, o.f, nxf);
-  for (int k = 0; k < 3; k++) {
-    o.ti[k] = m[k] + h * nxf[k];
-    o.tj[k] = -m[k] + h * nxf[k];
-  }
+// stage 4 (after the axial force fax, stage 3: axial_force()): force on i, torques on i and j
+// (forces and moments act at the bond centre)
+TBAGS_INLINE void forces(const Params &p, const Motion &m, double fax, const vec::V3 &fs,
+                         const vec::V3 &mb, double mt, vec::V3 &f, vec::V3 &ti, vec::V3 &tj)
+{
+  using namespace vec;
+  const double fn = axial_damped(p, fax, m.eps, m.vn);
+  f = fn * m.n + fs + p.gs * m.vs;
+  const V3 mom = mb + mt * m.n + p.gr * m.wrel;
+  const V3 arm = (0.5 * m.r) * cross(m.n, f);
+  ti = mom + arm;
+  tj = arm - mom;
 }
 
 }    // namespace yarn

@@ -362,6 +362,17 @@ def test_sheet_same_on_ranks_and_newton(tmp_path, sheet_data, sheet_ref, ranks, 
     assert b == bonds and dx < 1e-12
 
 
+def test_sheet_same_with_the_baseline_kernel(tmp_path, sheet_data, sheet_ref):
+    """The bond law's batch built for the baseline and (where the CPU has it) for AVX2: the same
+    bits, so the same sheet, torn the same way."""
+    wd, bonds = sheet_ref
+    deck = SHEET.replace("bond_style bpm/yarn overlay/pair yes", "bond_style bpm/yarn overlay/pair yes kernel baseline")
+    res = lmprun.run(deck, tmp_path, variables={"data": sheet_data, "newton_bond": "off", "n1": 1000,
+                                                "n2": 1500, "checkpoint": ""}).check()
+    assert "batch kernel baseline" in res.output
+    assert (tmp_path / "sheet.dump").read_bytes() == (wd / "sheet.dump").read_bytes()
+
+
 def test_sheet_write_restart_on_ranks(tmp_path, sheet_data):
     # a write_restart between runs migrates atoms between ranks (as LAMMPS's neighbor history did
     # for the pair, see test_pair_mpi) while the bond history fix still holds the run's bond

@@ -90,3 +90,18 @@ def test_bad_coeff(tmp_path, coeff, message):
 def test_wrong_atom_style(tmp_path):
     res = lmprun.run(deck(atom_style="bond", fix=""), tmp_path)
     assert res.returncode != 0 and "requires atom_style bpm/sphere" in res.error_line(), res.error_line()
+
+
+@pytest.mark.parametrize("settings,message", [
+    ("kernel", "kernel needs a value: auto or baseline"),
+    ("kernel fast", "kernel fast is not known; use auto or baseline"),
+    ("stiff yes", "unknown keyword 'stiff'; use overlay/pair, break, store/local or kernel"),
+])
+def test_bad_settings(tmp_path, settings, message):
+    res = lmprun.run(deck().replace("bond_style bpm/yarn", "bond_style bpm/yarn " + settings), tmp_path)
+    assert res.returncode != 0 and "Bond style bpm/yarn: " + message in res.error_line()
+
+
+def test_kernel_keyword_picks_the_build(tmp_path):
+    res = lmprun.run(deck().replace("bond_style bpm/yarn", "bond_style bpm/yarn kernel baseline"), tmp_path).check()
+    assert "Bond style bpm/yarn: batch kernel baseline" in res.output

@@ -1,5 +1,5 @@
 // Unit tests of law/yarn_law.h against closed forms (no LAMMPS).
-#include "law/yarn_law.h"
+#include "law/yarn_chain.h"
 
 #include <gtest/gtest.h>
 

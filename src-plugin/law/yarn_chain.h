@@ -1,0 +1,137 @@
+/* T-BAGS DEM toolkit: the yarn bond law's stages (yarn_law.h) chained once, over lanes: one
+   bond (compute(): single(), tests) or a batch of bonds of one type (bond_style bpm/yarn: one
+   bond per SIMD lane). Pure header, no LAMMPS types; tests/unit/test_yarn_chain.cpp checks the
+   batch against the stages chained by hand, bit for bit.
+
+   Three loops over the lanes: kinematics and history (vectorised), the axial force (a table
+   look-up per bond), the forces (vectorised). Neither the baseline nor the AVX2 build
+   contracts to FMA, so a lane gives the bits of a single bond.
+*/
+#ifndef TBAGS_LAW_YARN_CHAIN_H
+#define TBAGS_LAW_YARN_CHAIN_H
+
+#include "yarn_law.h"
+
+#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
+#define TBAGS_YARN_SIMD _Pragma("omp simd")
+#else
+#define TBAGS_YARN_SIMD
+#endif
+
+namespace tbags {
+namespace yarn {
+
+// Up to W bonds of one type, one column each. In: the ends' positions x, velocities v and
+// angular velocities w (i: the end of the lower tag), the history rows h (NHISTORY, h[R0] > 0).
+// Out: f (on i; j gets -f), torques ti and tj, strain eps, axial force fax, length r, broken;
+// h updated when integrating. The rest carries values between the loops.
+template <int W> struct alignas(64) Lanes {
+  static constexpr int N = W;
+  double xi[3][N], xj[3][N], vi[3][N], vj[3][N], wi[3][N], wj[3][N];
+  double h[NHISTORY][N];
+  double f[3][N], ti[3][N], tj[3][N], eps[N], fax[N], r[N];
+  long long broken[N];    // 64 bits like the lanes (a 1-byte flag keeps the AVX2 loop scalar)
+  double n[3][N], vs[3][N], wrel[3][N], vn[N];
+};
+using Batch = Lanes<32>;    // bond_style bpm/yarn's (14 KB, in L1)
+
+template <int W> TBAGS_INLINE vec::V3 col3(const double (*r)[W], int l)
+{
+  return vec::V3{r[0][l], r[1][l], r[2][l]};
+}
+template <int W> TBAGS_INLINE void set_col3(double (*r)[W], int l, const vec::V3 &v)
+{
+  r[0][l] = v.x;
+  r[1][l] = v.y;
+  r[2][l] = v.z;
+}
+
+// The law over bonds 0..n-1 of the lanes, all with the constants p. UPDATE: integrate the
+// histories (false in a run's set-up, single() and outputs).
+template <bool UPDATE, int W>
+TBAGS_INLINE void chain(const Params &p, Lanes<W> &b, int n, double dt)
+{
+  using vec::V3;
+  const Springs k = springs(p);
+  // loop 1: kinematics (stage 1) and the incremental springs' history (stage 2)
+  TBAGS_YARN_SIMD
+  for (int l = 0; l < n; l++) {
+    const double r0 = b.h[R0][l];
+    const Motion m = kinematics(col3(b.xi, l), col3(b.xj, l), col3(b.vi, l), col3(b.vj, l),
+                                col3(b.wi, l), col3(b.wj, l), r0);
+    if (UPDATE) {
+      V3 fs{b.h[FS][l], b.h[FS + 1][l], b.h[FS + 2][l]};
+      V3 mb{b.h[MB][l], b.h[MB + 1][l], b.h[MB + 2][l]};
+      double mt = b.h[MT][l];
+      integrate(k, m, r0, dt, fs, mb, mt);
+      b.h[FS][l] = fs.x, b.h[FS + 1][l] = fs.y, b.h[FS + 2][l] = fs.z;
+      b.h[MB][l] = mb.x, b.h[MB + 1][l] = mb.y, b.h[MB + 2][l] = mb.z;
+      b.h[MT][l] = mt;
+    }
+    set_col3(b.n, l, m.n);
+    set_col3(b.vs, l, m.vs);
+    set_col3(b.wrel, l, m.wrel);
+    b.vn[l] = m.vn;
+    b.r[l] = m.r;
+    b.eps[l] = m.eps;
+    b.broken[l] = breaks(p, m.eps);
+  }
+  // loop 2: the axial force (stage 3: table look-up, largest strain)
+  for (int l = 0; l < n; l++) b.fax[l] = axial_force(p, b.eps[l], &b.h[EPSMAX][l], UPDATE);
+  // loop 3: forces and torques (stage 4)
+  TBAGS_YARN_SIMD
+  for (int l = 0; l < n; l++) {
+    Motion m;
+    m.n = col3(b.n, l);
+    m.vs = col3(b.vs, l);
+    m.wrel = col3(b.wrel, l);
+    m.r = b.r[l];
+    m.eps = b.eps[l];
+    m.vn = b.vn[l];
+    const V3 fs{b.h[FS][l], b.h[FS + 1][l], b.h[FS + 2][l]};
+    const V3 mb{b.h[MB][l], b.h[MB + 1][l], b.h[MB + 2][l]};
+    V3 f, ti, tj;
+    forces(p, m, b.fax[l], fs, mb, b.h[MT][l], f, ti, tj);
+    set_col3(b.f, l, f);
+    set_col3(b.ti, l, ti);
+    set_col3(b.tj, l, tj);
+  }
+}
+
+// one bond: its ends and time step
+struct Bond {
+  const double *xi, *xj, *vi, *vj, *wi, *wj;
+  double dt;
+};
+
+struct Result {
+  double f[3];      // force on i (j gets -f)
+  double ti[3], tj[3];
+  double eps, fax;  // strain and axial force (tension positive)
+  double r;
+  bool broken;
+};
+
+// one bond step through the chain; hist holds NHISTORY doubles (hist[R0] > 0)
+inline void compute(const Params &p, const Bond &b, double *hist, bool update, Result &o)
+{
+  Lanes<1> l;
+  for (int k = 0; k < 3; k++) {
+    l.xi[k][0] = b.xi[k], l.xj[k][0] = b.xj[k];
+    l.vi[k][0] = b.vi[k], l.vj[k][0] = b.vj[k];
+    l.wi[k][0] = b.wi[k], l.wj[k][0] = b.wj[k];
+  }
+  for (int k = 0; k < NHISTORY; k++) l.h[k][0] = hist[k];
+  if (update) chain<true>(p, l, 1, b.dt);
+  else chain<false>(p, l, 1, b.dt);
+  for (int k = 0; k < NHISTORY; k++) hist[k] = l.h[k][0];
+  for (int k = 0; k < 3; k++) o.f[k] = l.f[k][0], o.ti[k] = l.ti[k][0], o.tj[k] = l.tj[k][0];
+  o.eps = l.eps[0];
+  o.fax = l.fax[0];
+  o.r = l.r[0];
+  o.broken = l.broken[0];
+}
+
+}    // namespace yarn
+}    // namespace tbags
+#endif
