@@ -14,14 +14,7 @@
 #define TBAGS_LAW_CONTACT_CHAIN_H
 
 #include "contact_law.h"
-
-#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
-#define TBAGS_PRAGMA_SIMD _Pragma("omp simd")
-#define TBAGS_PRAGMA_SIMD_OR_REDO _Pragma("omp simd reduction(| : redo)")
-#else
-#define TBAGS_PRAGMA_SIMD
-#define TBAGS_PRAGMA_SIMD_OR_REDO
-#endif
+#include "lanes.h"
 
 namespace tbags {
 namespace contact {
@@ -50,18 +43,6 @@ template <int W> struct alignas(64) Lanes {
   double fs[3][N], fr[3][N], r[N];
 };
 using Batch = Lanes<32>;    // the pair's: 32 contacts (64 took 2 % longer)
-
-// column l of three rows (a vector's x, y, z)
-template <int W> TBAGS_INLINE vec::V3 row3(const double (*r)[W], int l)
-{
-  return vec::V3{r[0][l], r[1][l], r[2][l]};
-}
-template <int W> TBAGS_INLINE void set_row3(double (*r)[W], int l, const vec::V3 &v)
-{
-  r[0][l] = v.x;
-  r[1][l] = v.y;
-  r[2][l] = v.z;
-}
 
 // The law over contacts 0..n-1 of the lanes.
 //   ROLL     the rolling model of every contact (Rolling)

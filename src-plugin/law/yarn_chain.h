@@ -10,13 +10,8 @@
 #ifndef TBAGS_LAW_YARN_CHAIN_H
 #define TBAGS_LAW_YARN_CHAIN_H
 
+#include "lanes.h"
 #include "yarn_law.h"
-
-#if defined(_OPENMP) || defined(TBAGS_OPENMP_SIMD)
-#define TBAGS_YARN_SIMD _Pragma("omp simd")
-#else
-#define TBAGS_YARN_SIMD
-#endif
 
 namespace tbags {
 namespace yarn {
@@ -35,17 +30,6 @@ template <int W> struct alignas(64) Lanes {
 };
 using Batch = Lanes<32>;    // bond_style bpm/yarn's (14 KB, in L1)
 
-template <int W> TBAGS_INLINE vec::V3 col3(const double (*r)[W], int l)
-{
-  return vec::V3{r[0][l], r[1][l], r[2][l]};
-}
-template <int W> TBAGS_INLINE void set_col3(double (*r)[W], int l, const vec::V3 &v)
-{
-  r[0][l] = v.x;
-  r[1][l] = v.y;
-  r[2][l] = v.z;
-}
-
 // The law over bonds 0..n-1 of the lanes, all with the constants p. UPDATE: integrate the
 // histories (false in a run's set-up, single() and outputs).
 template <bool UPDATE, int W>
@@ -54,11 +38,11 @@ TBAGS_INLINE void chain(const Params &p, Lanes<W> &b, int n, double dt)
   using vec::V3;
   const Springs k = springs(p);
   // loop 1: kinematics (stage 1) and the incremental springs' history (stage 2)
-  TBAGS_YARN_SIMD
+  TBAGS_PRAGMA_SIMD
   for (int l = 0; l < n; l++) {
     const double r0 = b.h[R0][l];
-    const Motion m = kinematics(col3(b.xi, l), col3(b.xj, l), col3(b.vi, l), col3(b.vj, l),
-                                col3(b.wi, l), col3(b.wj, l), r0);
+    const Motion m = kinematics(row3(b.xi, l), row3(b.xj, l), row3(b.vi, l), row3(b.vj, l),
+                                row3(b.wi, l), row3(b.wj, l), r0);
     if (UPDATE) {
       V3 fs{b.h[FS][l], b.h[FS + 1][l], b.h[FS + 2][l]};
       V3 mb{b.h[MB][l], b.h[MB + 1][l], b.h[MB + 2][l]};
@@ -68,9 +52,9 @@ TBAGS_INLINE void chain(const Params &p, Lanes<W> &b, int n, double dt)
       b.h[MB][l] = mb.x, b.h[MB + 1][l] = mb.y, b.h[MB + 2][l] = mb.z;
       b.h[MT][l] = mt;
     }
-    set_col3(b.n, l, m.n);
-    set_col3(b.vs, l, m.vs);
-    set_col3(b.wrel, l, m.wrel);
+    set_row3(b.n, l, m.n);
+    set_row3(b.vs, l, m.vs);
+    set_row3(b.wrel, l, m.wrel);
     b.vn[l] = m.vn;
     b.r[l] = m.r;
     b.eps[l] = m.eps;
@@ -79,12 +63,12 @@ TBAGS_INLINE void chain(const Params &p, Lanes<W> &b, int n, double dt)
   // loop 2: the axial force (stage 3: table look-up, largest strain)
   for (int l = 0; l < n; l++) b.fax[l] = axial_force(p, b.eps[l], &b.h[EPSMAX][l], UPDATE);
   // loop 3: forces and torques (stage 4)
-  TBAGS_YARN_SIMD
+  TBAGS_PRAGMA_SIMD
   for (int l = 0; l < n; l++) {
     Motion m;
-    m.n = col3(b.n, l);
-    m.vs = col3(b.vs, l);
-    m.wrel = col3(b.wrel, l);
+    m.n = row3(b.n, l);
+    m.vs = row3(b.vs, l);
+    m.wrel = row3(b.wrel, l);
     m.r = b.r[l];
     m.eps = b.eps[l];
     m.vn = b.vn[l];
@@ -92,9 +76,9 @@ TBAGS_INLINE void chain(const Params &p, Lanes<W> &b, int n, double dt)
     const V3 mb{b.h[MB][l], b.h[MB + 1][l], b.h[MB + 2][l]};
     V3 f, ti, tj;
     forces(p, m, b.fax[l], fs, mb, b.h[MT][l], f, ti, tj);
-    set_col3(b.f, l, f);
-    set_col3(b.ti, l, ti);
-    set_col3(b.tj, l, tj);
+    set_row3(b.f, l, f);
+    set_row3(b.ti, l, ti);
+    set_row3(b.tj, l, tj);
   }
 }
 

@@ -12,6 +12,7 @@
 #include <random>
 
 using namespace tbags::contact;
+using tbags::row3;
 using tbags::vec::V3;
 
 namespace {

@@ -4,6 +4,7 @@
 // allows), and so does compute() for one bond.
 
 #include "law/yarn_chain.h"
+#include "yarn_fixtures.h"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include <random>
 
 using namespace tbags::yarn;
+using tbags::row3;
 using tbags::vec::V3;
 
 namespace {
@@ -41,25 +43,10 @@ Ref reference_bond(const Params &p, bool update, const V3 &xi, const V3 &xj, con
   return o;
 }
 
-Curve tape()    // sigma = E0 eps (1 - a eps) sampled at 0.01
-{
-  Curve c;
-  for (int k = 0; k <= 16; k++) {
-    const double e = 0.01 * k;
-    c.eps.push_back(e);
-    c.val.push_back(3.2e9 * e * (1 - 1.953125 * e));
-  }
-  return c;
-}
-
+// the fixtures' yarn with damping, breaking at 12 % (some random bonds break), elastic or plastic
 Params params(const Curve &c, bool plastic)
 {
-  Params p;
-  p.curve = &c;
-  p.d = 1e-3;
-  p.E = c.slope0();
-  p.nu = 0.3;
-  p.kappa = 0.9;
+  Params p = yarn_fixtures::yarn(c);
   p.eps_break = 0.12;
   p.gn = 1e-3, p.gs = 2e-3, p.gr = 1e-8;
   p.plastic = plastic;
@@ -97,8 +84,6 @@ template <int W> void random_bond(Lanes<W> &b, int l, std::mt19937_64 &g, double
   b.h[MT][l] = 1e-4 * u(g);
 }
 
-template <int W> V3 col(const double (*r)[W], int l) { return V3{r[0][l], r[1][l], r[2][l]}; }
-
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
 void expect_same(const V3 &a, const V3 &b, const char *what, int l)
@@ -111,7 +96,7 @@ void expect_same(const V3 &a, const V3 &b, const char *what, int l)
 // n bonds through the batch and through the reference: every output and history, bit for bit
 template <bool UPDATE> void check_batch(bool plastic, double tilt, int n, unsigned seed)
 {
-  const Curve c = tape();
+  const Curve c = yarn_fixtures::tape();
   const Params p = params(c, plastic);
   std::mt19937_64 g(seed);
   auto b = std::make_unique<Batch>();
@@ -123,11 +108,11 @@ template <bool UPDATE> void check_batch(bool plastic, double tilt, int n, unsign
   for (int l = 0; l < n; l++) {
     double h[NHISTORY];
     for (int k = 0; k < NHISTORY; k++) h[k] = in->h[k][l];
-    const Ref r = reference_bond(p, UPDATE, col(in->xi, l), col(in->xj, l), col(in->vi, l),
-                                 col(in->vj, l), col(in->wi, l), col(in->wj, l), dt, h);
-    expect_same(col(b->f, l), r.f, "force", l);
-    expect_same(col(b->ti, l), r.ti, "torque on i", l);
-    expect_same(col(b->tj, l), r.tj, "torque on j", l);
+    const Ref r = reference_bond(p, UPDATE, row3(in->xi, l), row3(in->xj, l), row3(in->vi, l),
+                                 row3(in->vj, l), row3(in->wi, l), row3(in->wj, l), dt, h);
+    expect_same(row3(b->f, l), r.f, "force", l);
+    expect_same(row3(b->ti, l), r.ti, "torque on i", l);
+    expect_same(row3(b->tj, l), r.tj, "torque on j", l);
     EXPECT_TRUE(same_bits(b->eps[l], r.eps) && same_bits(b->fax[l], r.fax)) << "bond " << l;
     EXPECT_EQ(bool(b->broken[l]), r.broken) << "bond " << l;
     for (int k = 0; k < NHISTORY; k++) EXPECT_TRUE(same_bits(b->h[k][l], h[k])) << "history " << k;
@@ -160,7 +145,7 @@ TEST(YarnChain, HistoriesThatTurnFarNeedTheExactRotation)
 
 TEST(YarnChain, OneBondIsTheBatchsLane)
 {
-  const Curve c = tape();
+  const Curve c = yarn_fixtures::tape();
   const Params p = params(c, true);
   std::mt19937_64 g(11);
   auto b = std::make_unique<Batch>();
@@ -176,9 +161,9 @@ TEST(YarnChain, OneBondIsTheBatchsLane)
     for (int k = 0; k < NHISTORY; k++) h[k] = in->h[k][l];
     Result o;
     compute(p, Bond{xi, xj, vi, vj, wi, wj, 1e-6}, h, true, o);
-    expect_same(V3{o.f[0], o.f[1], o.f[2]}, col(b->f, l), "force", l);
-    expect_same(V3{o.ti[0], o.ti[1], o.ti[2]}, col(b->ti, l), "torque on i", l);
-    expect_same(V3{o.tj[0], o.tj[1], o.tj[2]}, col(b->tj, l), "torque on j", l);
+    expect_same(V3{o.f[0], o.f[1], o.f[2]}, row3(b->f, l), "force", l);
+    expect_same(V3{o.ti[0], o.ti[1], o.ti[2]}, row3(b->ti, l), "torque on i", l);
+    expect_same(V3{o.tj[0], o.tj[1], o.tj[2]}, row3(b->tj, l), "torque on j", l);
     EXPECT_EQ(o.broken, bool(b->broken[l]));
     for (int k = 0; k < NHISTORY; k++) EXPECT_TRUE(same_bits(b->h[k][l], h[k])) << "history " << k;
   }

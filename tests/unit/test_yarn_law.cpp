@@ -1,5 +1,6 @@
 // Unit tests of law/yarn_law.h against closed forms (no LAMMPS).
 #include "law/yarn_chain.h"
+#include "yarn_fixtures.h"
 
 #include <gtest/gtest.h>
 
@@ -14,28 +15,8 @@ void expect_rel(double got, double want, double rel = REL)
   EXPECT_NEAR(got, want, rel * std::fabs(want)) << "got " << got << " want " << want;
 }
 
-Curve pp()    // sigma = E0 eps (1 - a eps) sampled at 0.01
-{
-  Curve c;
-  for (int k = 0; k <= 16; k++) {
-    const double e = 0.01 * k;
-    c.eps.push_back(e);
-    c.val.push_back(3.2e9 * e * (1 - 1.953125 * e));
-  }
-  return c;
-}
-
-Params params(const Curve &c)
-{
-  Params p;
-  p.curve = &c;
-  p.d = 1e-3;
-  p.E = c.slope0();
-  p.nu = 0.3;
-  p.kappa = 0.9;
-  p.eps_break = 0.16;
-  return p;
-}
+Curve pp() { return yarn_fixtures::tape(); }
+Params params(const Curve &c) { return yarn_fixtures::yarn(c); }
 
 struct Two {
   double xi[3] = {0, 0, 0}, xj[3] = {0.005, 0, 0};
