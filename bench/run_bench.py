@@ -11,6 +11,7 @@ builds, none in 1000 steps by default), so only pair compute() differs.
 compute() per contact-step: independent of machine load, for comparing kernels.
 
 usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2] [--repeat K] [--callgrind S]
+       ./tbags bench --whole [--ranks 1,2] [--repeat K] [--steps S]   (bench/whole.py)
 """
 import argparse
 import re
@@ -70,14 +71,22 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--atoms-per-cell", type=int, default=4000)
     ap.add_argument("--rep", type=int, default=2, help="replicate the packing rep^3 times (2: 32,000 atoms)")
-    ap.add_argument("--steps", type=int, default=1000)
+    ap.add_argument("--steps", type=int, default=None,
+                    help="steps per run (1000; --whole: 4444, 0.1 mm of shear)")
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--repeat", type=int, default=3,
                     help="alternating runs of the two styles per rank count (median reported)")
     ap.add_argument("--phi", type=float, default=0.66)
     ap.add_argument("--callgrind", type=int, default=0, metavar="S",
                     help="instructions per contact-step over S steps instead of timings")
+    ap.add_argument("--whole", action="store_true",
+                    help="the whole run instead: the sheared demo bag against the closest stock setup (bench/whole.py)")
     args = ap.parse_args()
+    if args.whole:
+        import whole
+        whole.whole([int(r) for r in args.ranks.split(",")], args.repeat, args.steps or 4444)
+        return
+    args.steps = args.steps or 1000
     wd = ROOT / "runs" / "bench"
     wd.mkdir(parents=True, exist_ok=True)
     # the random insertion (no overlaps) starts from a dilute box (solid fraction of the
