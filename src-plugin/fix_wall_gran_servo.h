@@ -44,6 +44,7 @@ class FixWallGranServo : public Fix {
   int maxsize_restart() override;
 
  protected:
+  static constexpr const char *STYLE = "Fix wall/gran/servo";    // errors' prefix
   int axis;              // 0,1,2: plane normal along x, y, z
   int sense;             // +1: particles on the + side of the plane, -1: on the - side, 0: both
                          // (a film: two faces, each a half-thickness from the mid-plane)
@@ -65,6 +66,16 @@ class FixWallGranServo : public Fix {
   bool limit_damping;
   int size_history;
   double **history;
+
+  // the particles that can touch the plate (local indices, in order): those within 1.5 neighbor
+  // skins of it (gap - radius) when the list was built. Rebuilt at every reneighboring and when
+  // the plate has moved half a skin since: a particle moves less than a skin between builds
+  // (each position within half a skin of the last reneighboring's), so a particle left out stays
+  // clear of the plate. Not used (all particles every step) when a fix adapt may change radii.
+  std::vector<int> candidates;
+  bool use_candidates = true, candidates_built = false;
+  double pos_built = 0.0;
+  void build_candidates();
 
   // motion of each component: FIXED, VELOCITY (number or variable), SERVO (normal only) or FREE
   // (a film: accelerated by the particles' forces and gravity)

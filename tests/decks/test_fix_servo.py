@@ -205,3 +205,41 @@ def test_plate_trajectory_same_on_ranks(tmp_path, column, ranks):
     assert abs(par[0] - ref[0]) < 1e-14
     for a, b in zip(par[1:], ref[1:]):    # contact forces: round-off grown over 3000 steps
         assert abs(a - b) < 1e-6 * max(abs(b), 1e-3)
+
+
+# ---- the candidate list: a plate visits only the particles near it ------------------------------
+APPROACH = plates.HEAD.replace("atom_style sphere", "atom_style sphere 1") + """
+fix bottom all wall/gran/servo zplane 0.0 +1 material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2
+ADAPT
+fix 1 all nve/sphere
+fix 2 all gravity 9.81 vector 0 0 -1
+thermo 1000
+run 20000
+variable ztop equal bound(all,zmax)+0.0035+0.003
+fix top all wall/gran/servo zplane ${ztop} -1 material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 &
+    restitution 0.2 velocity z -0.2
+unfix 1
+run 15000
+print "TOP $(f_top[11]:%.17g) $(f_top[3]:%.17g) $(f_top[9]) $(f_top[6]:%.17g)"
+write_dump all custom final.dump id x y z vx vy vz fx fy fz modify sort id format float %.17g
+"""
+# a fix adapt that changes nothing (its group is empty) turns the candidate list off (radii could
+# change; dynamic radii need atom_style sphere 1, in both runs)
+NOOP_ADAPT = "group nobody empty\nvariable d equal 0.005\nfix noop nobody adapt 1000000 atom diameter v_d mass no"
+
+
+def test_candidate_list_misses_no_contact(tmp_path, column):
+    """A plate 3 mm above the settled column (three neighbor skins) comes down 6 mm at 0.2 m/s
+    into it, the column held still (no reneighboring then tells the list to grow): the list is
+    rebuilt as the plate moves, and the forces are the bits of visiting every particle every step
+    (without the rebuilds on the plate's motion the plate missed the column)."""
+    out = {}
+    for name, adapt in (("candidates", ""), ("every", NOOP_ADAPT)):
+        res = lmprun.run(APPROACH.replace("ADAPT", adapt), tmp_path / name,
+                         variables={"data": column, "rolling": "epsd"}).check()
+        out[name] = res.output
+    top = [l for l in out["every"].splitlines() if l.startswith("TOP")][0].split()
+    print("top plate at %s m after %s m, F %s N, %s contacts" % (top[1], top[4], top[2], top[3]))
+    assert abs(float(top[2])) > 1 and float(top[3]) >= 1    # it reached the column and presses it
+    a = (tmp_path / "candidates" / "final.dump").read_bytes()
+    assert a == (tmp_path / "every" / "final.dump").read_bytes()
