@@ -13,7 +13,7 @@ import lmprun
 sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
 from tbagspost import cyclic, hysteresis  # noqa: E402
 
-INPUTS = lmprun.ROOT / "inputs"
+INPUTS = lmprun.INPUTS
 HERE = lmprun.ROOT / "tests" / "decks"
 SIZE = lmprun.TINY_BAG
 PROTOCOL = dict(SIZE, amps="0.25 0.5", cycles=2, vpeak=0.03)
@@ -38,10 +38,9 @@ def test_coulomb_loop_of_a_sliding_block(tmp_path, mu):
 
 
 @pytest.fixture(scope="module")
-def cycled(tmp_path_factory):
+def cycled(tiny_filled):
     """A tiny bag (9 x 9 x 5) filled, then cycled at 0.25 and 0.5 mm, 2 cycles each."""
-    wd = tmp_path_factory.mktemp("cyclic")
-    lmprun.bag_and_fill(wd)
+    wd = tiny_filled
     shutil.copy(wd / "fill.data", wd / "fill.keep")
     res = lmprun.run(INPUTS / "in.cyclic", wd, variables=PROTOCOL).check()
     return wd, res

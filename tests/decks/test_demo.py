@@ -17,7 +17,7 @@ import lmprun
 sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
 from tbagspost import realizations  # noqa: E402
 
-INPUTS = lmprun.ROOT / "inputs"
+INPUTS = lmprun.INPUTS
 DEMO = {"nx": 21, "ny": 21, "nz": 7}
 
 

@@ -16,14 +16,13 @@ sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
 from tbagspost import cli, dumps, network, section, shape, shear, vtkout  # noqa: E402
 from tbagspost.run import Run  # noqa: E402
 
-INPUTS = lmprun.ROOT / "inputs"
+INPUTS = lmprun.INPUTS
 SIZE = lmprun.TINY_BAG
 
 
 @pytest.fixture(scope="module")
-def run(tmp_path_factory):
-    wd = tmp_path_factory.mktemp("postrun")
-    lmprun.bag_and_fill(wd)
+def run(tiny_filled):
+    wd = tiny_filled
     lmprun.run(INPUTS / "in.shear", wd, variables=dict(SIZE, v=0.02, ufinal=0.0015, du_dump=0.0005)).check()
     return Run(wd)
 

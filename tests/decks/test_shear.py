@@ -6,15 +6,13 @@ import pytest
 
 import lmprun
 
-INPUTS = lmprun.ROOT / "inputs"
+INPUTS = lmprun.INPUTS
 SIZE = lmprun.TINY_BAG
 
 
 @pytest.fixture(scope="module")
-def filled(tmp_path_factory):
-    wd = tmp_path_factory.mktemp("tinybag")
-    lmprun.bag_and_fill(wd)
-    return wd
+def filled(tiny_filled):
+    return tiny_filled
 
 
 def test_protocol_on_a_tiny_bag(filled):

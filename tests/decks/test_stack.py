@@ -14,17 +14,15 @@ import lmprun
 sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
 from tbagspost import cyclic, stack  # noqa: E402
 
-INPUTS = lmprun.ROOT / "inputs"
+INPUTS = lmprun.INPUTS
 SIZE = lmprun.TINY_BAG
 PROTOCOL = dict(SIZE, amps="0.1 0.25", cycles=2, vpeak=0.03)
 G = 9.81
 
 
 @pytest.fixture(scope="module")
-def fill(tmp_path_factory):
-    wd = tmp_path_factory.mktemp("fill")
-    lmprun.bag_and_fill(wd)
-    return wd / "fill.data"
+def fill(tiny_filled):
+    return tiny_filled / "fill.data"
 
 
 def cycle(fill, wd, np_ranks=1, **variables):
