@@ -26,7 +26,7 @@ SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSED|SHEARED|CYCLIC|CY
 MARKER = ".tbags-run"    # in every output folder the launcher made (so --out never clears a user's)
 
 
-def python(args, stdout=None, what="post-processing"):
+def run_python(args, stdout=None):
     """Debian's Python on a module or script of the repository, postprocess/ on its path."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(ROOT / "postprocess")] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
@@ -139,11 +139,11 @@ def post_process(preset, out, say):
     runs = [run_folder(out, r) for r in preset.runs]
     with open(out / "figures.txt", "w") as fh:
         if preset.post == "figures":
-            ok, err = python(["-m", "tbagspost"] + runs + ["--vtk"], fh)
+            ok, err = run_python(["-m", "tbagspost"] + runs + ["--vtk"], fh)
         elif preset.post == "cyclic":
-            ok, err = python(["-m", "tbagspost"] + runs, fh)
+            ok, err = run_python(["-m", "tbagspost"] + runs, fh)
         else:    # stack: the single bag and the stack
-            ok, err = python(["-m", "tbagspost"] + runs + ["-o", out / "figures"], fh)
+            ok, err = run_python(["-m", "tbagspost"] + runs + ["-o", out / "figures"], fh)
     if not ok:
         raise LaunchError("%s\nshear: post-processing failed (./tbags plot %s)"
                           % (err.strip(), " ".join(str(r) for r in runs)))
@@ -210,7 +210,7 @@ def run_realizations(preset, n, seed, ranks, out, user, say):
     if not all(ok):
         raise LaunchError("shear: a realization failed (its log: %s/r*.log)" % out)
     runs = [run_folder(out / ("r%d" % k), r) for k in range(1, n + 1) for r in preset.runs]
-    ok, err = python(["-m", "tbagspost"] + runs + ["--only", "none", "--realizations", "-o",
+    ok, err = run_python(["-m", "tbagspost"] + runs + ["--only", "none", "--realizations", "-o",
                                                    out / "realizations"])
     if not ok:
         raise LaunchError("%s\nshear: the realizations' summary failed" % err.strip())
