@@ -115,7 +115,6 @@ void FixWallGranServo::init()
 
   // a fix adapt may grow radii within a run, which the candidate list would not see
   use_candidates = modify->get_fix_by_style("^adapt").empty();
-  candidates_built = false;
 
   for (int d = 0; d < 3; d++) {
     if (mode[d] == VELOCITY && !vvar[d].empty()) {

@@ -16,12 +16,6 @@ namespace vec {
 
 inline double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline double len(const double *a) { return std::sqrt(dot(a, a)); }
-inline void copy(const double *a, double *b) { b[0] = a[0]; b[1] = a[1]; b[2] = a[2]; }
-inline void zero(double *a) { a[0] = a[1] = a[2] = 0.0; }
-inline void sub(const double *a, const double *b, double *c)
-{
-  c[0] = a[0] - b[0]; c[1] = a[1] - b[1]; c[2] = a[2] - b[2];
-}
 inline void cross(const double *a, const double *b, double *c)
 {
   c[0] = a[1] * b[2] - a[2] * b[1];

@@ -44,13 +44,10 @@ TBAGS_INLINE void chain(const Params &p, Lanes<W> &b, int n, double dt)
     const Motion m = kinematics(row3(b.xi, l), row3(b.xj, l), row3(b.vi, l), row3(b.vj, l),
                                 row3(b.wi, l), row3(b.wj, l), r0);
     if (UPDATE) {
-      V3 fs{b.h[FS][l], b.h[FS + 1][l], b.h[FS + 2][l]};
-      V3 mb{b.h[MB][l], b.h[MB + 1][l], b.h[MB + 2][l]};
-      double mt = b.h[MT][l];
-      integrate(k, m, r0, dt, fs, mb, mt);
-      b.h[FS][l] = fs.x, b.h[FS + 1][l] = fs.y, b.h[FS + 2][l] = fs.z;
-      b.h[MB][l] = mb.x, b.h[MB + 1][l] = mb.y, b.h[MB + 2][l] = mb.z;
-      b.h[MT][l] = mt;
+      V3 fs = row3(b.h + FS, l), mb = row3(b.h + MB, l);
+      integrate(k, m, r0, dt, fs, mb, b.h[MT][l]);
+      set_row3(b.h + FS, l, fs);
+      set_row3(b.h + MB, l, mb);
     }
     set_row3(b.n, l, m.n);
     set_row3(b.vs, l, m.vs);
@@ -72,10 +69,8 @@ TBAGS_INLINE void chain(const Params &p, Lanes<W> &b, int n, double dt)
     m.r = b.r[l];
     m.eps = b.eps[l];
     m.vn = b.vn[l];
-    const V3 fs{b.h[FS][l], b.h[FS + 1][l], b.h[FS + 2][l]};
-    const V3 mb{b.h[MB][l], b.h[MB + 1][l], b.h[MB + 2][l]};
     V3 f, ti, tj;
-    forces(p, m, b.fax[l], fs, mb, b.h[MT][l], f, ti, tj);
+    forces(p, m, b.fax[l], row3(b.h + FS, l), row3(b.h + MB, l), b.h[MT][l], f, ti, tj);
     set_row3(b.f, l, f);
     set_row3(b.ti, l, ti);
     set_row3(b.tj, l, tj);
