@@ -7,16 +7,20 @@ result. Prints each run's time per particle-step and per section, and per item: 
 contact-step (Pair), per bond-step (Bond) and per particle-step of the rest (Modify: plates,
 integrator, gravity, averages).
 """
-import csv
 import re
+import sys
 from pathlib import Path
 from statistics import median
 
 import lmprun
+from tbagsrun.presets import DEMO_BAG as DEMO, PRESETS  # (launcher/ is on the path through lmprun)
 
 ROOT = Path(__file__).resolve().parents[1]
-DEMO = {"nx": 21, "ny": 21, "nz": 7}
-V, DT = 0.015, 1.5e-6
+sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost.run import read_csv  # noqa: E402
+
+V = PRESETS["demo"].runs[0].variables["v"]    # the demo's shear speed
+DT = 1.5e-6                                   # in.shear's time step (the stock deck takes it)
 SECTIONS = ("Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other")
 
 
@@ -34,10 +38,8 @@ def prepare(wd):
 
 
 def top_plate(state):
-    with open(state / "shear.csv") as fh:
-        rows = [r for r in csv.reader(l for l in fh if not l.startswith("#"))]
-    head = rows[0]
-    return float(rows[-1][head.index("zplate_mm")]) / 1000
+    """The top plate's height (m) at the state: the CSV's last row."""
+    return float(read_csv(state / "shear.csv")["zplate_mm"][-1]) / 1000
 
 
 def timing(output):

@@ -35,6 +35,15 @@ def run_python(args, stdout=None):
     return proc.returncode == 0, proc.stderr
 
 
+def run_script(name, args, say):
+    """inputs/<name> (a check or a projection) on args; says its output; (succeeded, stdout)."""
+    proc = subprocess.run([sys.executable, ROOT / "inputs" / name] + [str(a) for a in args],
+                          capture_output=True, text=True)
+    for line in (proc.stdout + proc.stderr).splitlines():
+        say(line)
+    return proc.returncode == 0, proc.stdout
+
+
 def stage(folder, deck, ranks, variables, say):
     """inputs/in.<deck> in folder with `ranks` ranks; says its summary lines; stops if it fails."""
     say("tbags shear: %s in %s ..." % (deck, folder))
@@ -164,11 +173,8 @@ def check(preset, out, say, in_realizations):
     if not preset.check:
         return
     args = [out] if preset.check == "trends" else ["--speed"] + [run_folder(out, r) for r in preset.runs]
-    proc = subprocess.run([sys.executable, ROOT / "inputs" / "check_trends.py"] + args,
-                          capture_output=True, text=True)
-    for line in (proc.stdout + proc.stderr).splitlines():
-        say(line)
-    if proc.returncode != 0:
+    ok, _ = run_script("check_trends.py", args, say)
+    if not ok:
         if preset.check == "speed":
             raise LaunchError("quasistatic: the S-u curves differ (above)")
         if not in_realizations:    # in realizations, the summary's check decides
@@ -217,12 +223,9 @@ def run_realizations(preset, n, seed, ranks, out, user, say):
     say("tbags shear %s: %d realizations done in %d s; spread in %s/realizations/"
         % (preset.name, n, time.time() - t0, out))
     if preset.check == "trends":
-        proc = subprocess.run([sys.executable, ROOT / "inputs" / "check_trends.py", out],
-                              capture_output=True, text=True)
-        (out / "realizations" / "check.txt").write_text(proc.stdout)
-        for line in (proc.stdout + proc.stderr).splitlines():
-            say(line)
-        if proc.returncode != 0:
+        ok, text = run_script("check_trends.py", [out], say)
+        (out / "realizations" / "check.txt").write_text(text)
+        if not ok:
             raise LaunchError("trends: a finding did not hold in a realization (above; "
                               "%s/realizations/check.txt)" % out)
 
@@ -242,9 +245,5 @@ def estimate_paper(folder, ranks, say):
     for r in counts:
         stage(folder / ("np%d" % r), ESTIMATE_RUN.deck, r,
               dict(DEMO_BAG, fill="../fill.data", **ESTIMATE_RUN.variables), quiet)
-    proc = subprocess.run([sys.executable, ROOT / "inputs" / "project_time.py", folder,
-                           "--ranks", str(ranks)], capture_output=True, text=True)
-    for line in (proc.stdout + proc.stderr).splitlines():
-        say(line)
-    if proc.returncode != 0:
+    if not run_script("project_time.py", [folder, "--ranks", ranks], say)[0]:
         raise LaunchError("paper: the projection failed (above)")
