@@ -11,7 +11,8 @@ builds, none in 1000 steps by default), so only pair compute() differs.
 compute() per contact-step: independent of machine load, for comparing kernels.
 
 usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2] [--repeat K] [--callgrind S]
-       ./tbags bench --whole [--ranks 1,2] [--repeat K] [--steps S]   (bench/whole.py)
+       ./tbags bench --whole [--ranks 1,2] [--repeat K] [--steps S] [--state DIR] [--compare DIR]
+                                                                   (bench/whole.py)
 """
 import argparse
 import re
@@ -81,10 +82,19 @@ def main():
                     help="instructions per contact-step over S steps instead of timings")
     ap.add_argument("--whole", action="store_true",
                     help="the whole run instead: the sheared demo bag against the closest stock setup (bench/whole.py)")
+    ap.add_argument("--state", metavar="DIR", help="--whole: the checkpoint of in.shear -var state 1 to "
+                    "time (e.g. runs/paper/estimate/state); default the demo bag at u = 1 mm")
+    ap.add_argument("--compare", metavar="DIR", help="--whole: also time the plugin in DIR (another "
+                    "build's plugin folder) in the same rotation")
     args = ap.parse_args()
+    if (args.state or args.compare) and not args.whole:
+        ap.error("--state and --compare are options of --whole")
+    if args.compare and not (Path(args.compare) / "tbagsplugin.so").is_file():
+        ap.error("--compare %s: no tbagsplugin.so there" % args.compare)
     if args.whole:
         import whole
-        whole.whole([int(r) for r in args.ranks.split(",")], args.repeat, args.steps or 4444)
+        whole.whole([int(r) for r in args.ranks.split(",")], args.repeat, args.steps or 4444,
+                    args.state, args.compare)
         return
     args.steps = args.steps or 1000
     wd = ROOT / "runs" / "bench"

@@ -1,12 +1,16 @@
-"""Whole-run benchmark (./tbags bench --whole): the sheared demo bag's shear stage with the
-project's styles (inputs/in.shear, resumed from a checkpoint at u = 1 mm: pair gran/hertz/rolling,
-bond bpm/yarn, the servo plates, the CSV and its averages) against the closest stock setup on
-the same particles, bonds and velocities (bench/in.bench_whole_stock), for the same steps, on 1
-and 2 ranks; the two alternate --repeat times and the median of the pairwise ratios is the
-result. Prints each run's time per particle-step and per section, and per item: ns per
-contact-step (Pair), per bond-step (Bond) and per particle-step of the rest (Modify: plates,
-integrator, gravity, averages).
+"""Whole-run benchmark (./tbags bench --whole): a sheared bag's shear stage with the project's
+styles (inputs/in.shear resumed from its checkpoint: pair gran/hertz/rolling, bond bpm/yarn, the
+servo plates, the CSV and its averages) against the closest stock setup on the same particles,
+bonds and velocities (bench/in.bench_whole_stock), for the same steps, on 1 and 2 ranks; they
+alternate --repeat times and the median of the pairwise ratios is the result. The bag: the demo
+bag sheared to u = 1 mm (made once), or --state DIR, a checkpoint that in.shear -var state 1 wrote
+(e.g. runs/paper/estimate/state, the paper bag's, from ./tbags shear paper --estimate).
+--compare DIR also times the plugin built in DIR (another commit's build) in the same rotation.
+Prints each run's time per particle-step and per section, and per item: ns per contact-step
+(Pair), per bond-step (Bond) and per particle-step of the rest (Modify: plates, integrator,
+gravity, averages).
 """
+import json
 import re
 import sys
 from pathlib import Path
@@ -17,10 +21,9 @@ from tbagsrun.presets import DEMO_BAG as DEMO, PRESETS  # (launcher/ is on the p
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "postprocess"))
-from tbagspost.run import read_csv  # noqa: E402
+from tbagspost.run import bag_size, log_timestep, loops, read_csv  # noqa: E402
 
 V = PRESETS["demo"].runs[0].variables["v"]    # the demo's shear speed
-DT = 1.5e-6                                   # in.shear's time step (the stock deck takes it)
 SECTIONS = ("Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other")
 
 
@@ -37,59 +40,81 @@ def prepare(wd):
     return state
 
 
-def top_plate(state):
-    """The top plate's height (m) at the state: the CSV's last row."""
-    return float(read_csv(state / "shear.csv")["zplate_mm"][-1]) / 1000
+class State:
+    """A checkpoint of in.shear -var state 1: the bag's size, the shear speed and time step, the
+    newest restart file, the data file and the top plate's height (the CSV's last row)."""
+
+    def __init__(self, folder):
+        self.folder = Path(folder).resolve()
+        self.data = self.folder / "state.data"
+        restarts = sorted(self.folder.glob("shear.restart.*"), key=lambda f: f.stat().st_mtime)
+        if not self.data.is_file() or not restarts:
+            raise SystemExit("bench --whole: %s has no state.data and shear.restart.* (in.shear -var state 1)"
+                             % self.folder)
+        self.restart = restarts[-1]
+        size = bag_size(self.folder, self.folder.parent, self.folder.parent.parent)
+        if size is None:
+            raise SystemExit("bench --whole: no bag.json or log.bag in or above %s" % self.folder)
+        self.bag = dict(nx=size[0], ny=size[1], nz=size[2])
+        self.dt = log_timestep(self.folder / "log.shear") or log_timestep(self.folder / "log.lammps") or 1.5e-6
+        stamp = self.folder / ".shear.vars"
+        self.v = float(json.loads(stamp.read_text()).get("v", V)) if stamp.is_file() else V
+        self.ztop = float(read_csv(self.folder / "shear.csv")["zplate_mm"][-1]) / 1000
 
 
 def timing(output):
-    """Loop time, steps, atoms and section times of the last run in a LAMMPS output."""
-    loops = re.findall(r"Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", output)
-    t, p, steps, atoms = loops[-1]
-    tail = output[output.rindex("Loop time of"):]
-    # each section's average over the ranks (the second column; "Other" has no min and max)
-    sec = {s: float(re.search(r"^%s\s*\|[^|]*\|\s*(\S+)" % s, tail, re.M).group(1)) for s in SECTIONS}
-    return dict(loop=float(t), ranks=int(p), steps=int(steps), atoms=int(atoms), **sec)
+    """Loop time, steps, atoms and section times (average over the ranks) of the last run."""
+    last = loops(output)[-1]
+    return dict(loop=last["loop"], ranks=last["ranks"], steps=last["steps"], atoms=last["atoms"],
+                **{name: last["sections"][name][1] for name in SECTIONS})
 
 
-def run_ours(state, wd, ranks, steps):
-    res = lmprun.run(ROOT / "inputs" / "in.shear", wd, np_ranks=ranks, timeout=7200, variables=dict(
-        DEMO, v=V, restart=state / "shear.restart.1", ufinal=0.001 + steps * V * DT)).check()
+def run_ours(state, wd, ranks, steps, plugin=True):
+    res = lmprun.run(ROOT / "inputs" / "in.shear", wd, np_ranks=ranks, timeout=7200, plugin_path=plugin,
+                     variables=dict(state.bag, v=state.v, dt=state.dt, restart=state.restart, steps=steps,
+                                    du_dump=1)).check()
     return timing(res.output)
 
 
-def run_stock(state, wd, ranks, steps, ztop):
+def run_stock(state, wd, ranks, steps):
     res = lmprun.run(ROOT / "bench" / "in.bench_whole_stock", wd, np_ranks=ranks, timeout=7200, variables=dict(
-        state=state / "state.data", ztop=ztop, v=V, dt=DT, nsteps=steps)).check()
+        state=state.data, ztop=state.ztop, v=state.v, dt=state.dt, nsteps=steps)).check()
     return timing(res.output)
 
 
-def bond_count(state):
-    return int(re.search(r"^\s*(\d+) bonds$", (state / "state.data").read_text(), re.M).group(1))
+def bond_count(data):
+    return int(re.search(r"^\s*(\d+) bonds$", Path(data).read_text(), re.M).group(1))
 
 
-def whole(ranks_list, repeat, steps):
+def whole(ranks_list, repeat, steps, state_dir=None, compare=None):
     wd = ROOT / "runs" / "bench" / "whole"
-    state = prepare(wd)
-    ztop = top_plate(state)
-    bonds = bond_count(state)
+    state = State(state_dir or prepare(wd))
+    bonds = bond_count(state.data)
+    setups = ["tbags"] + (["compare"] if compare else []) + ["stock"]
+    print("bench --whole: %s, bag %d x %d x %d, %d steps%s" % (
+        state.folder, state.bag["nx"], state.bag["ny"], state.bag["nz"], steps,
+        "; compare: the plugin in %s" % compare if compare else ""))
     print("%-6s %-7s %8s %8s %12s   %s" % ("ranks", "setup", "atoms", "steps", "us/atom-step",
                                           "per section (us per atom-step): " + " ".join(SECTIONS)))
     for ranks in ranks_list:
-        t = {"tbags": [], "stock": []}
+        t = {name: [] for name in setups}
         for _ in range(repeat):
-            for name in ("tbags", "stock"):
+            for name in setups:
                 d = wd / ("%s-np%d" % (name, ranks))
-                x = run_ours(state, d, ranks, steps) if name == "tbags" else run_stock(state, d, ranks, steps, ztop)
+                if name == "stock":
+                    x = run_stock(state, d, ranks, steps)
+                else:
+                    x = run_ours(state, d, ranks, steps, compare if name == "compare" else True)
                 t[name].append(x)
                 per = 1e6 * ranks / (x["steps"] * x["atoms"])
                 print("%-6d %-7s %8d %8d %12.4f   %s" % (ranks, name, x["atoms"], x["steps"], x["loop"] * per,
                                                        " ".join("%.4f" % (x[s] * per) for s in SECTIONS)), flush=True)
-        ratios = [s["loop"] / o["loop"] for o, s in zip(t["tbags"], t["stock"])]
         med = {n: {k: median(r[k] for r in t[n]) for k in ("loop",) + SECTIONS} for n in t}
         steps_run = t["tbags"][0]["steps"]
-        print("%-6d whole run: stock / tbags %.2fx (median of %d alternating pairs, range %.2f-%.2f); "
-              "bonds: tbags %.1f, stock %.1f ns per bond-step (%d bonds)"
-              % (ranks, median(ratios), len(ratios), min(ratios), max(ratios),
-                 1e9 * ranks * med["tbags"]["Bond"] / (steps_run * bonds),
-                 1e9 * ranks * med["stock"]["Bond"] / (steps_run * bonds), bonds), flush=True)
+        for other in setups[1:]:
+            ratios = [s["loop"] / o["loop"] for o, s in zip(t["tbags"], t[other])]
+            print("%-6d whole run: %s / tbags %.2fx (median of %d alternating pairs, range %.2f-%.2f); "
+                  "bonds: tbags %.1f, %s %.1f ns per bond-step (%d bonds)"
+                  % (ranks, other, median(ratios), len(ratios), min(ratios), max(ratios),
+                     1e9 * ranks * med["tbags"]["Bond"] / (steps_run * bonds), other,
+                     1e9 * ranks * med[other]["Bond"] / (steps_run * bonds), bonds), flush=True)

@@ -1,53 +1,56 @@
 #!/usr/bin/python3
-"""Projected wall time of the paper-size simple shear protocol from a measured short stretch.
+"""Projected wall time of the paper-size simple shear protocol from a measured short stretch of
+its own bag, and the scaling model over ranks (inputs/scaling.py).
 
 usage: /usr/bin/python3 inputs/project_time.py ESTIMATE_DIR [--ranks N]
 
-ESTIMATE_DIR holds log.bag and log.fill of a small bag and np<P>/log.shear of short shear runs at
-P ranks (the `./tbags shear paper --estimate` layout). DEM cost is linear in the number of
-particles at fixed density, so the measured cost per particle-step of the shear stage (compression
-and shearing loops together: all contacts, bonds and plates) at P ranks is applied to the paper's
-bag. Assumptions, printed with the table: the fill stage has the same fixed step counts at every
-size (in.fill) and costs no more per particle-step than shearing (its grains grow from half size);
-compression takes the measured number of steps times the ratio of sand heights; shearing takes
-u_final / (v dt) steps per load (dt of the measured run). Ranks beyond those measured are extrapolated with ideal scaling
-from the largest measured count (marked), which a larger bag approaches better than the demo bag.
+ESTIMATE_DIR is the `./tbags shear paper --estimate` layout: the bag's and fill's logs in its
+parent folder (the paper run's own), state/ (compression and a short shear to a checkpoint:
+state.data, shear.csv, log.shear), np<P>/log.shear (a short stretch resumed from the checkpoint
+at P ranks) and decomp/np<P>/log.shear (a few steps at P ranks: LAMMPS's decomposition). DEM
+cost is linear in the number of particles at fixed density, so the measured cost per
+particle-step of the shear stage at P ranks is applied to the paper's bag (measured on the
+paper's bag itself, the factor is 1). Assumptions, printed with the table: the fill costs no more
+per particle-step than shearing (its grains grow from half size); compression takes the measured
+number of steps (times the ratio of sand heights on a smaller bag); shearing takes
+u_final / (v dt) steps per load (dt of the measured run).
 """
 import argparse
 import math
-import re
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-from tbagspost.run import bag_size, log_timestep  # noqa: E402  (the readers of a run's summaries)
-
-LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import scaling  # noqa: E402
+from tbagspost.datafile import DataFile  # noqa: E402
+from tbagspost.run import bag_size, log_timestep, loops, read_csv  # noqa: E402
 
 # the paper's protocol (doc/tbags_model.rst section 4)
 PAPER = dict(nx=81, ny=81, nz=17, loads=(5500, 3730, 1960), v=0.004, ufinal=0.015)
-DT_DECK = re.compile(r"^variable\s+dt\s+index\s+(\S+)", re.M)
+MODEL_RANKS = (1, 2, 4, 8, 16, 32, 64, 128, 256)
+ZBOT = -0.0025    # m, the bottom plate (between_plates.lmp: -s/2)
+
+
+def runs(log):
+    """The completed runs of a LAMMPS log; stops clearly when it is missing or has none."""
+    if not log.is_file():
+        raise SystemExit("project_time: no %s (run ./tbags shear paper --estimate)" % log)
+    found = loops(log.read_text(errors="replace"))
+    if not found:
+        raise SystemExit("project_time: %s has no completed run (truncated?)" % log)
+    return found
 
 
 def timestep(shear_log):
-    """The time step of the measured shear run (its TIMESTEP line), else in.shear's default."""
+    """The time step of the measured shear run (its TIMESTEP line)."""
     dt = log_timestep(shear_log)
     if dt is None:
-        dt = float(DT_DECK.search((Path(__file__).resolve().parent / "in.shear").read_text()).group(1))
+        raise SystemExit("project_time: %s has no TIMESTEP line" % shear_log)
     return dt
 
 
 D_MIN, D_STEP, E0 = 3.60465e-3, 0.310078e-3, 0.68
-
-
-def loops(log):
-    """[(seconds, ranks, steps, atoms)] of every run in a LAMMPS log."""
-    if not log.is_file():
-        raise SystemExit("project_time: no %s (run ./tbags shear paper --estimate)" % log)
-    found = [(float(t), int(p), int(s), int(a)) for t, p, s, a in LOOP.findall(log.read_text())]
-    if not found:
-        raise SystemExit("project_time: %s has no completed run (truncated?)" % log)
-    return found
 
 
 def bag_particles(nx, ny, nz):
@@ -62,22 +65,31 @@ def sand_grains(nx, ny, nz, s=0.005):
     return round((nx - 2) * (ny - 2) * (nz - 2) * s ** 3 / ((1 + E0) * v_mean))
 
 
+def measured(est_dir):
+    """{ranks: the shear stretch's runs with steps} of est_dir/np<P>/log.shear."""
+    found = {}
+    for d in sorted(est_dir.glob("np*")):
+        timed = [x for x in runs(d / "log.shear") if x["steps"] > 0]
+        if timed:
+            found[timed[0]["ranks"]] = timed
+    if not found:
+        raise SystemExit("project_time: no np*/log.shear in %s" % est_dir)
+    return found
+
+
 def project(est_dir, ranks):
     est_dir = Path(est_dir)
-    size = bag_size(est_dir)
+    size = bag_size(est_dir, est_dir.parent)
     if size is None:
-        raise SystemExit("project_time: no bag.json and no BAG line in %s" % (est_dir / "log.bag"))
+        raise SystemExit("project_time: no bag.json and no BAG line in %s" % est_dir.parent)
     nx, ny, nz = size
-    fill_steps = sum(s for _, _, s, _ in loops(est_dir / "log.fill"))
-    cost, comp_steps, dt = {}, None, None
-    for d in sorted(est_dir.glob("np*")):
-        dt = dt or timestep(d / "log.shear")
-        runs = loops(d / "log.shear")
-        p = runs[0][1]
-        cost[p] = sum(t for t, _, _, _ in runs) / sum(s * a for _, _, s, a in runs)
-        comp_steps = runs[0][2]
-    if not cost:
-        raise SystemExit("project_time: no np*/log.shear in %s" % est_dir)
+    fill_log = next((f for f in (est_dir / "log.fill", est_dir.parent / "log.fill") if f.is_file()),
+                    est_dir.parent / "log.fill")
+    fill_steps = sum(x["steps"] for x in runs(fill_log))
+    comp_steps = runs(est_dir / "state" / "log.shear")[0]["steps"]
+    dt = timestep(est_dir / "state" / "log.shear")
+    cost = {p: sum(x["loop"] for x in xs) / sum(x["steps"] * x["atoms"] for x in xs)
+            for p, xs in measured(est_dir).items()}
     atoms = bag_particles(PAPER["nx"], PAPER["ny"], PAPER["nz"]) + sand_grains(PAPER["nx"], PAPER["ny"], PAPER["nz"])
     comp_paper = comp_steps * (PAPER["nz"] - 2) / (nz - 2)
     shear_steps = PAPER["ufinal"] / (PAPER["v"] * dt)
@@ -92,7 +104,47 @@ def project(est_dir, ranks):
                 comp_paper=comp_paper, shear_steps=shear_steps, rows=rows)
 
 
-def report(r):
+def model(est_dir, projection):
+    """The scaling model (inputs/scaling.py) on the checkpoint's decomposition: costs from the 1-
+    and 2-rank stretches, counts at MODEL_RANKS, checked against decomp/np<P>; None without the
+    2-rank stretch or the checkpoint's data file."""
+    est_dir = Path(est_dir)
+    timed = measured(est_dir)
+    if 1 not in timed or 2 not in timed or not (est_dir / "state" / "state.data").is_file():
+        return None
+    data = DataFile(est_dir / "state" / "state.data")
+    plates = (ZBOT, float(read_csv(est_dir / "state" / "shear.csv")["zplate_mm"][-1]) / 1000)
+    n = {p: scaling.counts(data, p, plates) for p in MODEL_RANKS}
+
+    def per_step(xs, section, k):
+        return sum(x["sections"][section][k] for x in xs) / sum(x["steps"] for x in xs)
+
+    one = {s: per_step(timed[1], s, 1) for s in timed[1][0]["sections"]}
+    one["total"] = sum(x["loop"] for x in timed[1]) / sum(x["steps"] for x in timed[1])
+    two = dict(Comm_min=per_step(timed[2], "Comm", 0))
+    totals = dict(neigh=n[1]["neigh"].sum(), bonds=n[1]["bonds"].sum(), owned=n[1]["owned"].sum(),
+                  ghosts2=n[2]["ghosts"].max())
+    c = scaling.costs(one, two, totals)
+    checks = {}
+    for d in sorted((est_dir / "decomp").glob("np*")):
+        last = runs(d / "log.shear")[-1]
+        p = last["ranks"]
+        counted = n[p] if p in n else scaling.counts(data, p, plates)
+        checks[p] = scaling.check(counted, dict(last["stats"], grid=last["grid"]))
+    t1 = scaling.step_time(c, n[1], 1)
+    two_measured = sum(x["loop"] for x in timed[2]) / sum(x["steps"] for x in timed[2])
+    steps_total = projection["fill_steps"] + 3 * (projection["comp_paper"] + projection["shear_steps"])
+    rows = []
+    for p in MODEL_RANKS:
+        t = scaling.step_time(c, n[p], p)
+        rows.append(dict(ranks=p, grid=n[p]["grid"], owned=n[p]["owned"], ghosts=n[p]["ghosts"],
+                         neigh=n[p]["neigh"], bonds=n[p]["bonds"], plate=n[p]["plate"], step=t,
+                         efficiency=t1 / (p * t), hours=steps_total * t * projection["atoms"] / data.x.shape[0] / 3600))
+    return dict(costs=c, rows=rows, checks=checks, two_measured=two_measured,
+                two_model=scaling.step_time(c, n[2], 2, dict(scaling.NETWORK, alpha=0.0, beta=0.0)))
+
+
+def report(r, m=None):
     nx, ny, nz = r["size"]
     out = ["Projected time of `./tbags shear paper` (81 x 81 x 17 bag, %d particles; 3 loads)" % r["atoms"],
            "measured on the %d x %d x %d bag's shear stage; steps: fill %d, compression %d x %.1f "
@@ -105,7 +157,34 @@ def report(r):
                                                           load_h, fill_h + 3 * load_h))
     if any(x[2] for x in r["rows"]):
         out.append("* extrapolated: ideal scaling from the largest measured rank count")
+    if m:
+        out += model_report(m)
     return "\n".join(out)
+
+
+def model_report(m):
+    c = m["costs"]
+    out = ["", "Scaling model (inputs/scaling.py): per-rank counts of LAMMPS's brick decomposition of "
+           "the checkpoint, costs measured here (ns): %.1f per neighbour pair, %.1f per bond, %.1f per "
+           "atom (the rest), %.1f per ghost (2-rank communication); %s"
+           % (c["c_pair"] * 1e9, c["c_bond"] * 1e9, c["c_atom"] * 1e9, c["c_ghost"] * 1e9, scaling.NETWORK_TEXT),
+           "at 2 ranks the model (no network) gives %.2f ms per step, measured %.2f ms"
+           % (m["two_model"] * 1e3, m["two_measured"] * 1e3),
+           "%6s %9s %17s %17s %10s %10s %10s %9s %7s %9s" % (
+               "ranks", "grid", "owned mean/max", "ghosts mean/max", "neigh max", "bonds max", "plate max",
+               "ms/step", "effic.", "total (h)")]
+    for row in m["rows"]:
+        out.append("%6d %9s %8.0f/%-8.0f %8.0f/%-8.0f %10.0f %10.0f %10.0f %9.3f %6.0f%% %9.1f" % (
+            row["ranks"], "x".join(map(str, row["grid"])), row["owned"].mean(), row["owned"].max(),
+            row["ghosts"].mean(), row["ghosts"].max(), row["neigh"].max(), row["bonds"].max(),
+            row["plate"].max(), row["step"] * 1e3, 100 * row["efficiency"], row["hours"]))
+    below = [row["ranks"] for row in m["rows"] if row["efficiency"] < 0.5]
+    out.append("efficiency falls below 50 %% at %s ranks" % below[0] if below else
+               "efficiency stays above 50 %% up to %d ranks" % m["rows"][-1]["ranks"])
+    for p, bad in sorted(m["checks"].items()):
+        out.append("counts at %d ranks against LAMMPS's (grid, Nlocal, Nghost, Neighs; mean and max): %s"
+                   % (p, "agree (means within 2 %, maxima within 5 %)" if not bad else "DIFFER: " + "; ".join(bad)))
+    return out
 
 
 def main(argv=None):
@@ -115,7 +194,8 @@ def main(argv=None):
     a = ap.parse_args(argv)
     if a.ranks < 1:
         raise SystemExit("project_time: --ranks must be >= 1")
-    text = report(project(a.estimate_dir, a.ranks))
+    r = project(a.estimate_dir, a.ranks)
+    text = report(r, model(a.estimate_dir, r))
     print(text)
     (Path(a.estimate_dir) / "projection.txt").write_text(text + "\n")
 

@@ -101,14 +101,17 @@ def run(deck, workdir, ranks=1, variables=None, args=(), log="log.lammps", scree
         timeout=None, plugin=True):
     """Run `deck` (a path) in `workdir` (made if missing) and return its Result, unchecked.
     screen: a file for the screen output, written as the run goes (the output is read back from
-    it); else kept in memory. plugin=False: without LAMMPS_PLUGIN_PATH (stock LAMMPS alone)."""
+    it); else kept in memory. plugin=False: without LAMMPS_PLUGIN_PATH (stock LAMMPS alone); a
+    folder: the plugin built there (another build, for benchmarks)."""
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     cmd = command(deck, ranks, variables, args, log)
     env = dict(os.environ)
     env.setdefault("OMP_NUM_THREADS", "1")
-    if not plugin:
+    if plugin is False:
         env.pop("LAMMPS_PLUGIN_PATH", None)
+    elif plugin is not True:
+        env["LAMMPS_PLUGIN_PATH"] = str(plugin)
     if screen is None:
         proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True, timeout=timeout)
         return Result(proc.returncode, proc.stdout + proc.stderr, workdir)

@@ -84,9 +84,16 @@ PRESETS = {p.name: p for p in (
            realizations=False, estimate=True,
            help="the full 81 x 81 x 17 bag (17,922 particles, 35,840 bonds, 97,130 grains) at the three "
                 "loads, 4 mm/s to u = 15 mm: days of CPU, run it with MPI on a cluster. It first "
-                "measures a short stretch and prints the projected time at 1, 2 and N ranks; "
-                "`paper --estimate` stops there. -> runs/paper/"),
+                "makes its bag and fill, compresses and shears them to a checkpoint, times a short "
+                "stretch from it at 1, 2 and N ranks, counts LAMMPS's decomposition at 4-64 ranks "
+                "and prints the projected time and the scaling model (about an hour on 2 cores, "
+                "once: a second call reuses the fill and checkpoint); `paper --estimate` stops "
+                "there. -> runs/paper/"),
 )}
 
-# the paper preset's estimate: the demo bag's shear stage for a short stretch at these settings
-ESTIMATE_RUN = Run("", "shear", dict(v=0.004, ufinal=0.0002))
+# the paper preset's estimate, on the paper's own bag and fill: compression and shearing to
+# u = 20 um (a checkpoint), then 20 um more (3,333 steps at 4 mm/s and 1.5 us) timed at 1, 2 and N
+# ranks resumed from it; CSV rows every 10 um so that both stretches are whole rows
+ESTIMATE = dict(v=0.004, du_csv=1e-5, du_dump=2e-5, u_state=2e-5, u_timed=2e-5)
+# ranks whose domain decomposition of the paper bag the scaling model counts (a few steps each)
+DECOMPOSITIONS = (4, 8, 16, 32, 64)

@@ -6,9 +6,10 @@ LAMMPS stage with its log (log.<deck>) and screen output (screen.<deck>.txt) in 
 the figures (postprocess/tbagspost) and the preset's checks (inputs/check_trends.py).
 Realizations: the same with fills of seeds S, S + 1, ... in r1, r2, ..., as many at once as the
 cores allow, then their spread (tbagspost --realizations).
-The paper preset first measures a short stretch of the demo bag and projects its time
-(inputs/project_time.py).
+The paper preset first measures a short stretch of its own bag and projects its time and its
+scaling over ranks (inputs/project_time.py, inputs/scaling.py).
 """
+import json
 import os
 import re
 import shutil
@@ -19,7 +20,10 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from . import ROOT, LaunchError, lammps
-from .presets import DEMO_BAG, ESTIMATE_RUN
+from .presets import DECOMPOSITIONS, ESTIMATE
+
+sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost.run import log_timestep  # noqa: E402  (the reader of the decks' TIMESTEP line)
 
 # the lines of a stage's screen output that the launcher repeats (the decks' summaries)
 SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
@@ -109,9 +113,10 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     """One realization of a preset into `out`; user: the -var values given (they win)."""
     t0 = time.time()
     out = Path(out)
+    fill_vars = dict(preset.bag, **user)
     if preset.estimate:
         out.mkdir(parents=True, exist_ok=True)
-        estimate_paper(out / "estimate", ranks, say)
+        estimate_paper(out, preset.bag, ranks, user, say)
         if estimate_only:
             return
     else:
@@ -119,9 +124,8 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     for name, line in preset.defaults_said.items():
         if name not in user:
             say("tbags shear %s: %s" % (preset.name, line))
-    fill_vars = dict(preset.bag, **user)
-    stage(out, "bag", ranks, fill_vars, say)
-    stage(out, "fill", ranks, fill_vars, say)
+    stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
+    stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
 
     def job(run, r):
         return lambda s: stage(run_folder(out, run), run.deck, r, run_variables(preset, run, user), s)
@@ -230,20 +234,48 @@ def run_realizations(preset, n, seed, ranks, out, user, say):
                               "%s/realizations/check.txt)" % out)
 
 
-def estimate_paper(folder, ranks, say):
-    """The shear stage's cost per particle-step measured on the demo bag over a short stretch at
-    1, 2 and `ranks` ranks (those this machine has), projected to the paper's bag and protocol."""
+def stage_once(folder, deck, ranks, variables, say, product):
+    """stage(), unless an earlier call made `product` in folder with the same variables (a stamp
+    beside it), so that a long stage that finished is not run again."""
+    stamp = Path(folder) / (".%s.vars" % deck)
+    key = json.dumps({k: str(v) for k, v in variables.items()}, sort_keys=True)
+    if (Path(folder) / product).is_file() and stamp.is_file() and stamp.read_text() == key:
+        say("tbags shear: %s in %s: done before, reused" % (deck, folder))
+        return
+    stamp.unlink(missing_ok=True)
+    stage(folder, deck, ranks, variables, say)
+    stamp.write_text(key)
+
+
+def estimate_paper(out, bag, ranks, user, say):
+    """The paper run's cost measured on its own bag: the bag and its fill (the run's own, in out),
+    compression and a short shear to a checkpoint (estimate/state), each made once; then a short
+    stretch resumed from the checkpoint at 1, 2 and `ranks` ranks (estimate/np<P>) and a few steps
+    at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
+    scaling model); then the projection (inputs/project_time.py)."""
     counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
-    say("tbags shear paper: measuring a short stretch (demo bag, ranks: %s) ..."
-        % " ".join(map(str, counts)))
-    folder = Path(folder)
-    shutil.rmtree(folder, ignore_errors=True)
-    folder.mkdir(parents=True)
+    folder = Path(out) / "estimate"
+    fill_vars = dict(bag, **user)
+    stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
+    stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
+    e = ESTIMATE
+    shear = dict(fill_vars, v=e["v"], du_csv=e["du_csv"])
+    stage_once(folder / "state", "shear", ranks, dict(shear, fill="../../fill.data", ufinal=e["u_state"],
+                                                      du_dump=e["u_state"], state=1), say, "state.data")
+    restart = max((folder / "state").glob("shear.restart.*"), key=lambda f: f.stat().st_mtime).name
+    timed = round(e["u_timed"] / (e["v"] * float(log_timestep(folder / "state" / "log.shear"))))
+    say("tbags shear paper: timing %d shear steps of the paper bag at %s rank(s) ..."
+        % (timed, " and ".join(map(str, counts))))
     quiet = lambda line: None    # noqa: E731
-    stage(folder, "bag", counts[-1], DEMO_BAG, quiet)
-    stage(folder, "fill", counts[-1], DEMO_BAG, quiet)
     for r in counts:
-        stage(folder / ("np%d" % r), ESTIMATE_RUN.deck, r,
-              dict(DEMO_BAG, fill="../fill.data", **ESTIMATE_RUN.variables), quiet)
+        sub = folder / ("np%d" % r)
+        shutil.rmtree(sub, ignore_errors=True)
+        stage(sub, "shear", r, dict(shear, restart="../state/" + restart, steps=timed, du_dump=1), quiet)
+    say("tbags shear paper: the domain decomposition at %s ranks (a few steps each) ..."
+        % " ".join(map(str, DECOMPOSITIONS)))
+    for r in DECOMPOSITIONS:
+        sub = folder / "decomp" / ("np%d" % r)
+        shutil.rmtree(sub, ignore_errors=True)
+        stage(sub, "shear", r, dict(shear, restart="../../state/" + restart, steps=5, du_dump=1), quiet)
     if not run_script("project_time.py", [folder, "--ranks", ranks], say)[0]:
         raise LaunchError("paper: the projection failed (above)")

@@ -3,7 +3,8 @@
 
 Modules, one job each:
   dumps     readers of one dump file (grains through MDAnalysis, contacts and bonds), checks
-  run       a run directory: CSV, time step, dump steps, u at a dump step
+  run       a run directory: CSV, time step, dump steps, u at a dump step; LAMMPS logs' runs
+  datafile  a LAMMPS data file of the decks: box, atoms, bonds
   progress  a plain progress bar on stderr
   style     the paper style of the figures, saving
   shear     S-u and w-u figures (one run, several runs overlaid)

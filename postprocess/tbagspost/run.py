@@ -28,6 +28,35 @@ def log_timestep(path):
     return float(m.group(1)) if m else None
 
 
+LOOP_LINE = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
+SECTION_LINE = re.compile(r"^(Pair|Bond|Neigh|Comm|Output|Modify|Other)\s*\|([^|]*)\|([^|]*)\|([^|]*)\|", re.M)
+HISTO_LINE = re.compile(r"^(Nlocal|Nghost|Neighs):\s*(\S+) ave\s+(\S+) max\s+(\S+) min", re.M)
+GRID_LINE = re.compile(r"^\s*(\d+) by (\d+) by (\d+) MPI processor grid", re.M)
+
+
+def loops(text):
+    """Every completed run of a LAMMPS log or screen output, in order: dicts of loop (s), ranks,
+    steps, atoms, sections (name -> (min, avg, max) seconds over the ranks; Other has its avg
+    only), stats (Nlocal, Nghost, Neighs -> dict ave, max, min; when LAMMPS printed them) and
+    grid (the last processor grid printed before the run, or None)."""
+    found = []
+    heads = list(LOOP_LINE.finditer(text))
+    for k, m in enumerate(heads):
+        end = heads[k + 1].start() if k + 1 < len(heads) else len(text)
+        body = text[m.end():end]
+        sections = {}
+        for name, *cols in SECTION_LINE.findall(body):
+            vals = [float(c) if c.strip() else None for c in cols]
+            sections[name] = tuple(v if v is not None else vals[1] for v in vals)
+        stats = {name: dict(ave=float(a), max=float(b), min=float(c))
+                 for name, a, b, c in HISTO_LINE.findall(body)}
+        grids = GRID_LINE.findall(text[:m.start()])
+        found.append(dict(loop=float(m.group(1)), ranks=int(m.group(2)), steps=int(m.group(3)),
+                          atoms=int(m.group(4)), sections=sections, stats=stats,
+                          grid=tuple(int(g) for g in grids[-1]) if grids else None))
+    return found
+
+
 def bag_size(*folders):
     """(nx, ny, nz) of the bag made in the first of `folders` that has it: in.bag's summary
     bag.json, else the 'BAG nx x ny x nz' line of log.bag (runs made before bag.json); None."""

@@ -1,6 +1,7 @@
 """./tbags bench --whole's decks stay runnable (a benchmark is not a timed test: nothing here is
-timed): in.shear writes the sheared state (-var state 1), the stock deck runs on it for 2,000
-steps with no particle or bond lost, and the benchmark reads both runs' section times."""
+timed): in.shear writes the sheared state (-var state 1); the benchmark reads it back as a
+checkpoint, resumes our run from it for a given number of steps (in.shear -var steps) and runs the
+stock deck on it with no particle or bond lost, and reads both runs' section times."""
 import sys
 
 import lmprun
@@ -9,15 +10,17 @@ sys.path.insert(0, str(lmprun.ROOT / "bench"))
 import whole  # noqa: E402
 
 
-def test_stock_deck_runs_on_the_sheared_state(tmp_path):
+def test_both_setups_run_from_the_sheared_state(tmp_path):
     lmprun.bag_and_fill(tmp_path)
-    ours = lmprun.run(lmprun.INPUTS / "in.shear", tmp_path, variables=dict(
-        lmprun.TINY_BAG, v=0.02, ufinal=0.0002, state=1)).check()
-    assert (tmp_path / "state.data").is_file()
-    t = whole.timing(ours.output)
+    made = lmprun.run(lmprun.INPUTS / "in.shear", tmp_path, variables=dict(
+        lmprun.TINY_BAG, v=0.02, ufinal=0.0002, du_dump=0.0002, state=1)).check()
+    t = whole.timing(made.output)
     assert t["steps"] > 0 and t["atoms"] == 411 and t["Pair"] > 0 and t["Bond"] > 0
-    stock = lmprun.run(lmprun.ROOT / "bench" / "in.bench_whole_stock", tmp_path / "stock", variables=dict(
-        state=tmp_path / "state.data", ztop=whole.top_plate(tmp_path), v=0.015, dt=1.5e-6, nsteps=2000)).check()
-    s = whole.timing(stock.output)
-    assert s["steps"] == 2000 and s["atoms"] == 411 and s["Bond"] > 0
-    assert whole.bond_count(tmp_path) == 512
+    state = whole.State(tmp_path)
+    assert state.bag == lmprun.TINY_BAG and state.restart.name.startswith("shear.restart.")
+    assert state.dt == 1.5e-6 and abs(state.ztop) > 0
+    ours = whole.run_ours(state, tmp_path / "ours", 1, 300)
+    assert ours["steps"] == 300 and ours["atoms"] == 411 and ours["Bond"] > 0
+    stock = whole.run_stock(state, tmp_path / "stock", 1, 2000)
+    assert stock["steps"] == 2000 and stock["atoms"] == 411 and stock["Bond"] > 0
+    assert whole.bond_count(state.data) == 512

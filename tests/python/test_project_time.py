@@ -3,6 +3,7 @@ against a hand computation on synthetic logs; missing or truncated logs give a c
 import importlib.util
 import os
 import re
+import sys
 from pathlib import Path
 
 import pytest
@@ -13,16 +14,23 @@ pt = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(pt)
 
 LOOP = "Loop time of %g on %d procs for %d steps with %d atoms\n"
+TIMESTEP = "TIMESTEP: Rayleigh 1.1e-05 s, bond 7.8e-06 s; using %g s\n"
 
 
-def make(tmp_path, costs={1: 1e-6, 2: 0.6e-6}):
+def make(tmp_path, costs={1: 1e-6, 2: 0.6e-6}, dt=2e-6):
+    """The estimate's layout on a demo-size bag: the run's bag and fill logs, the checkpoint's
+    compression (39,000 steps) and short shear, stretches at P ranks (a run 0, then the timed run)."""
     (tmp_path / "log.bag").write_text("BAG 21 x 21 x 7: 1282 particles, 2560 bonds (formula: 1282, 2560)\n")
     (tmp_path / "log.fill").write_text(LOOP % (1, 2, 2000, 3156) * 10 + LOOP % (10, 2, 40000, 3156))
+    est = tmp_path / "estimate"
+    (est / "state").mkdir(parents=True)
+    (est / "state" / "log.shear").write_text(TIMESTEP % dt + LOOP % (50, 2, 39000, 3156) + LOOP % (0, 2, 0, 3156)
+                                             + LOOP % (5, 2, 3333, 3156))
     for p, c in costs.items():
-        d = tmp_path / ("np%d" % p)
+        d = est / ("np%d" % p)
         d.mkdir()
-        (d / "log.shear").write_text(LOOP % (c * 39000 * 3156, p, 39000, 3156) + LOOP % (c * 25000 * 3156, p, 25000, 3156))
-    return tmp_path
+        (d / "log.shear").write_text(TIMESTEP % dt + LOOP % (0.0, p, 0, 3156) + LOOP % (c * 25000 * 3156, p, 25000, 3156))
+    return est
 
 
 def test_counts_match_the_decks():
@@ -30,22 +38,18 @@ def test_counts_match_the_decks():
     assert pt.bag_particles(21, 21, 7) == 1282 and pt.sand_grains(21, 21, 7) == 1874
 
 
-def test_timestep_from_the_run_else_the_deck(tmp_path):
-    r = pt.project(make(tmp_path), ranks=1)
-    deck = float(re.search(r"^variable\s+dt\s+index\s+(\S+)", (ROOT / "inputs" / "in.shear").read_text(), re.M).group(1))
-    assert r["dt"] == deck
-    log = tmp_path / "np1" / "log.shear"
-    log.write_text("TIMESTEP: Rayleigh 1.141e-05 s, bond 7.777e-06 s; using 1e-6 s\n" + log.read_text())
-    r = pt.project(tmp_path, ranks=1)
+def test_timestep_from_the_run(tmp_path):
+    est = make(tmp_path, dt=1e-6)
+    r = pt.project(est, ranks=1)
     assert r["dt"] == 1e-6 and r["shear_steps"] == pytest.approx(0.015 / (0.004 * 1e-6))
+    log = est / "state" / "log.shear"
+    log.write_text(log.read_text().replace("TIMESTEP", "TIME"))
+    with pytest.raises(SystemExit, match="no TIMESTEP line"):
+        pt.project(est, ranks=1)
 
 
 def test_projection_by_hand(tmp_path):
-    make(tmp_path)
-    for p in (1, 2):
-        log = tmp_path / ("np%d" % p) / "log.shear"
-        log.write_text("TIMESTEP: Rayleigh 1.1e-05 s, bond 7.8e-06 s; using 2e-6 s\n" + log.read_text())
-    r = pt.project(tmp_path, ranks=4)
+    r = pt.project(make(tmp_path), ranks=4)
     atoms = 17922 + 97130
     assert r["atoms"] == atoms and r["fill_steps"] == 60000 and r["comp_steps"] == 39000
     steps_load = 39000 * 15 / 5 + 0.015 / (0.004 * 2e-6)
@@ -61,8 +65,62 @@ def test_projection_by_hand(tmp_path):
 
 def test_missing_and_truncated(tmp_path):
     with pytest.raises(SystemExit, match="no bag.json and no BAG line"):
-        pt.project(tmp_path, 1)
-    make(tmp_path)
-    (tmp_path / "np2" / "log.shear").write_text("LAMMPS (4 Feb 2025)\n")
+        pt.project(tmp_path / "estimate", 1)
+    est = make(tmp_path)
+    (est / "state" / "log.shear").write_text(TIMESTEP % 2e-6 + "LAMMPS (4 Feb 2025)\n")
     with pytest.raises(SystemExit, match="no completed run"):
-        pt.project(tmp_path, 1)
+        pt.project(est, 1)
+
+
+SECTIONS = """
+Section |  min time  |  avg time  |  max time  |%varavg| %total
+---------------------------------------------------------------
+Pair    | {pair:<10} | {pair:<10} | {pair:<10} |   0.0 | 40.00
+Bond    | {bond:<10} | {bond:<10} | {bond:<10} |   0.0 | 20.00
+Neigh   | 0.1        | 0.1        | 0.1        |   0.0 |  1.00
+Comm    | {comm:<10} | {comm_avg:<10} | {comm_avg:<10} |   0.0 |  5.00
+Output  | 0          | 0          | 0          |   0.0 |  0.00
+Modify  | 3          | 3          | 3          |   0.0 | 30.00
+Other   |            | 0.4        |            |       |  4.00
+
+Nlocal:         {nloc} ave  {nloc} max  {nloc} min
+Nghost:         {ngh} ave  {ngh} max  {ngh} min
+Neighs:         {nei} ave  {neimax} max  {nei} min
+"""
+
+
+def test_scaling_model_on_a_checkpoint(tmp_path):
+    """The model's costs come from the 1- and 2-rank stretches' sections and counts; the
+    decomposition runs' statistics are checked against the counts (a lattice of touching spheres
+    as the checkpoint: inputs/scaling.py's test has its hand counts)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from test_scaling import lattice
+    est = make(tmp_path, costs={1: 1e-6, 2: 0.6e-6})
+    state = est / "state"
+    lattice(state).path.rename(state / "state.data")
+    (state / "shear.csv").write_text("time_s,u_mm,w_mm,S_N,Fv_N,broken_bonds,zplate_mm\n0,0,0,0,0,0,12\n1,0.02,0,1,1,0,12\n")
+    steps = 100
+    (est / "np1" / "log.shear").write_text(TIMESTEP % 2e-6 + LOOP % (10.0, 1, steps, 128) + SECTIONS.format(
+        pair=2.88, bond=0.64, comm=0.0, comm_avg=0.0, nloc=128, ngh=0, nei=288, neimax=288))
+    (est / "np2" / "log.shear").write_text(TIMESTEP % 2e-6 + LOOP % (6.0, 2, steps, 128) + SECTIONS.format(
+        pair=1.44, bond=0.32, comm=0.48, comm_avg=0.9, nloc=64, ngh=32, nei=144, neimax=152))
+    d = est / "decomp" / "np4"
+    d.mkdir(parents=True)
+    (d / "log.shear").write_text("  2 by 2 by 1 MPI processor grid\n" + LOOP % (1.0, 4, 5, 128) + SECTIONS.format(
+        pair=1, bond=1, comm=1, comm_avg=1, nloc=32, ngh=40, nei=72, neimax=80))
+    r = pt.project(est, ranks=2)
+    m = pt.model(est, r)
+    c = m["costs"]
+    assert c["c_pair"] == pytest.approx(2.88 / steps / 288) and c["c_bond"] == pytest.approx(0.64 / steps / 64)
+    assert c["c_atom"] == pytest.approx((10.0 - 2.88 - 0.64) / steps / 128)
+    # 2 ranks split the 8 x 8 x 2 lattice 1 x 2 x 1: 64 owned, 32 ghosts each (the brick grown by
+    # 10 mm reaches two rows of 8 x 2 of the other)
+    assert c["c_ghost"] == pytest.approx(0.48 / steps / 32)
+    assert m["checks"] == {4: []}
+    rows = {row["ranks"]: row for row in m["rows"]}
+    assert rows[1]["efficiency"] == pytest.approx(1.0) and rows[4]["grid"] == (2, 2, 1)
+    assert rows[1]["step"] == pytest.approx(10.0 / steps)
+    text = pt.report(r, m)
+    assert "agree (means within 2 %" in text and "efficiency" in text
+    (d / "log.shear").write_text((d / "log.shear").read_text().replace("40 ave  40 max", "40 ave  50 max"))
+    assert "DIFFER: ghosts max 40, LAMMPS Nghost 50" in pt.report(r, pt.model(est, r))
