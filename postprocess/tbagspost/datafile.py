@@ -1,7 +1,7 @@
 """A LAMMPS data file of the decks (write_data, atom style bpm/sphere): the box, the atoms
 (id, type, diameter, position) and the bonds (first and second atom id).
 
-bpm/sphere's Atoms lines are: id type molecule diameter density x y z [ix iy iz].
+bpm/sphere's Atoms lines are: id molecule type diameter density x y z [ix iy iz].
 """
 from pathlib import Path
 
@@ -34,7 +34,7 @@ class DataFile:
         order = np.argsort(atoms[:, 0])
         atoms = atoms[order]
         self.id = atoms[:, 0].astype(np.int64)
-        self.type = atoms[:, 1].astype(int)
+        self.type = atoms[:, 2].astype(int)
         self.diameter = atoms[:, 3]
         self.x = atoms[:, 5:8]
         bonds = self._section(lines, "Bonds")

@@ -30,7 +30,7 @@ def lattice(tmp_path, nx=8, ny=8, nz=2):
     for k in range(nz):
         for j in range(ny):
             for i in range(nx):
-                lines.append("%d 2 0 %g 2650 %g %g %g 0 0 0" % (ids[k, j, i], A, (i + .5) * A, (j + .5) * A, (k + .5) * A))
+                lines.append("%d 0 2 %g 2650 %g %g %g 0 0 0" % (ids[k, j, i], A, (i + .5) * A, (j + .5) * A, (k + .5) * A))
     lines += ["", "Bonds", ""]
     b = 0
     for k in range(nz - 1):
