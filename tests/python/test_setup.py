@@ -16,11 +16,14 @@ def run(cmd, **kw):
     return subprocess.run(cmd, capture_output=True, text=True, timeout=600, **kw)
 
 
-def test_wrong_sha256_is_refused(tmp_path):
-    bogus = tmp_path / "lammps_20250204+dfsg.1.orig.tar.xz"
-    bogus.write_bytes(b"not the LAMMPS source")
-    env = dict(os.environ, LAMMPS_TARBALL=str(bogus))
-    r = run(["bash", str(ROOT / "cmake" / "fetch-lammps.sh"), str(tmp_path / "cache")], env=env)
+@pytest.mark.parametrize("script,tarball,var", [
+    ("fetch-lammps.sh", "lammps_20250204+dfsg.1.orig.tar.xz", "LAMMPS_TARBALL"),
+    ("fetch-liggghts.sh", "liggghts_3.8.0+repack1.orig.tar.xz", "LIGGGHTS_TARBALL")])
+def test_wrong_sha256_is_refused(tmp_path, script, tarball, var):
+    bogus = tmp_path / tarball
+    bogus.write_bytes(b"not the source")
+    env = dict(os.environ, **{var: str(bogus)})
+    r = run(["bash", str(ROOT / "cmake" / script), str(tmp_path / "cache")], env=env)
     assert r.returncode != 0
     assert "sha256 mismatch" in r.stderr and "refusing to build" in r.stderr
     assert not (tmp_path / "cache" / bogus.name).exists()    # the bad file is not kept
