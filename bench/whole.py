@@ -56,7 +56,10 @@ class State:
         if size is None:
             raise SystemExit("bench --whole: no bag.json or log.bag in or above %s" % self.folder)
         self.bag = dict(nx=size[0], ny=size[1], nz=size[2])
-        self.dt = log_timestep(self.folder / "log.shear") or log_timestep(self.folder / "log.lammps") or 1.5e-6
+        self.dt = log_timestep(self.folder / "log.shear") or log_timestep(self.folder / "log.lammps")
+        if self.dt is None:
+            raise SystemExit("bench --whole: no TIMESTEP line in %s/log.shear or log.lammps" % self.folder)
+        # the speed: the launcher's stamp of the stage's variables, else the demo's (prepare())
         stamp = self.folder / ".shear.vars"
         self.v = float(json.loads(stamp.read_text()).get("v", V)) if stamp.is_file() else V
         self.ztop = float(read_csv(self.folder / "shear.csv")["zplate_mm"][-1]) / 1000

@@ -77,6 +77,11 @@ def measured(est_dir):
     return found
 
 
+def wall_per_step(xs):
+    """Wall time per step (s) over runs of one stretch."""
+    return sum(x["loop"] for x in xs) / sum(x["steps"] for x in xs)
+
+
 def project(est_dir, ranks):
     est_dir = Path(est_dir)
     size = bag_size(est_dir, est_dir.parent)
@@ -88,8 +93,8 @@ def project(est_dir, ranks):
     fill_steps = sum(x["steps"] for x in runs(fill_log))
     comp_steps = runs(est_dir / "state" / "log.shear")[0]["steps"]
     dt = timestep(est_dir / "state" / "log.shear")
-    cost = {p: sum(x["loop"] for x in xs) / sum(x["steps"] * x["atoms"] for x in xs)
-            for p, xs in measured(est_dir).items()}
+    timed = measured(est_dir)
+    cost = {p: wall_per_step(xs) / xs[0]["atoms"] for p, xs in timed.items()}
     atoms = bag_particles(PAPER["nx"], PAPER["ny"], PAPER["nz"]) + sand_grains(PAPER["nx"], PAPER["ny"], PAPER["nz"])
     comp_paper = comp_steps * (PAPER["nz"] - 2) / (nz - 2)
     shear_steps = PAPER["ufinal"] / (PAPER["v"] * dt)
@@ -101,7 +106,7 @@ def project(est_dir, ranks):
         rows.append((p, c, p not in cost, fill_steps * atoms * c / 3600,
                      steps_per_load * atoms * c / 3600))
     return dict(size=(nx, ny, nz), atoms=atoms, fill_steps=fill_steps, comp_steps=comp_steps, dt=dt,
-                comp_paper=comp_paper, shear_steps=shear_steps, rows=rows)
+                comp_paper=comp_paper, shear_steps=shear_steps, rows=rows, timed=timed)
 
 
 def model(est_dir, projection):
@@ -109,18 +114,19 @@ def model(est_dir, projection):
     and 2-rank stretches, counts at MODEL_RANKS, checked against decomp/np<P>; None without the
     2-rank stretch or the checkpoint's data file."""
     est_dir = Path(est_dir)
-    timed = measured(est_dir)
+    timed = projection["timed"]
     if 1 not in timed or 2 not in timed or not (est_dir / "state" / "state.data").is_file():
         return None
     data = DataFile(est_dir / "state" / "state.data")
     plates = (ZBOT, float(read_csv(est_dir / "state" / "shear.csv")["zplate_mm"][-1]) / 1000)
-    n = {p: scaling.counts(data, p, plates) for p in MODEL_RANKS}
+    owners = scaling.pair_owners(data)
+    n = {p: scaling.counts(data, p, plates, owners) for p in MODEL_RANKS}
 
     def per_step(xs, section, k):
         return sum(x["sections"][section][k] for x in xs) / sum(x["steps"] for x in xs)
 
     one = {s: per_step(timed[1], s, 1) for s in timed[1][0]["sections"]}
-    one["total"] = sum(x["loop"] for x in timed[1]) / sum(x["steps"] for x in timed[1])
+    one["total"] = wall_per_step(timed[1])
     two = dict(Comm_min=per_step(timed[2], "Comm", 0))
     totals = dict(neigh=n[1]["neigh"].sum(), bonds=n[1]["bonds"].sum(), owned=n[1]["owned"].sum(),
                   ghosts2=n[2]["ghosts"].max())
@@ -129,10 +135,10 @@ def model(est_dir, projection):
     for d in sorted((est_dir / "decomp").glob("np*")):
         last = runs(d / "log.shear")[-1]
         p = last["ranks"]
-        counted = n[p] if p in n else scaling.counts(data, p, plates)
+        counted = n[p] if p in n else scaling.counts(data, p, plates, owners)
         checks[p] = scaling.check(counted, dict(last["stats"], grid=last["grid"]))
     t1 = scaling.step_time(c, n[1], 1)
-    two_measured = sum(x["loop"] for x in timed[2]) / sum(x["steps"] for x in timed[2])
+    two_measured = wall_per_step(timed[2])
     steps_total = projection["fill_steps"] + 3 * (projection["comp_paper"] + projection["shear_steps"])
     rows = []
     for p in MODEL_RANKS:

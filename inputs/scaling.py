@@ -65,9 +65,26 @@ def owner_cells(x, box, procgrid):
     return np.clip(cell, 0, np.array(procgrid) - 1)
 
 
-def counts(data, ranks, plates):
+def pair_owners(data):
+    """For each neighbour pair (closer than r_i + r_j + skin; bonded pairs too: the list keeps
+    them, the pair skips them), the atom whose rank lists it: with newton on a pair across two
+    bricks is listed by the rank of its lower atom (z, then y, then x decide, as LAMMPS's
+    half/size/bin/newton list keeps a ghost only above its owned atom)."""
+    x, r = data.x, 0.5 * data.diameter
+    pairs = cKDTree(x).query_pairs(2 * r.max() + SKIN, output_type="ndarray")
+    i, j = pairs[:, 0], pairs[:, 1]
+    near = np.linalg.norm(x[i] - x[j], axis=1) < r[i] + r[j] + SKIN
+    i, j = i[near], j[near]
+    xi, xj = x[i], x[j]
+    j_above = (xj[:, 2] > xi[:, 2]) | ((xj[:, 2] == xi[:, 2]) & ((xj[:, 1] > xi[:, 1]) |
+                                                               ((xj[:, 1] == xi[:, 1]) & (xj[:, 0] > xi[:, 0]))))
+    return np.where(j_above, i, j)
+
+
+def counts(data, ranks, plates, owners=None):
     """Per-rank counts (arrays of length `ranks`) of the data file's atoms decomposed on `ranks`
-    ranks: owned, ghosts, neigh, bonds, plate (plates: the bottom and top plates' heights, m)."""
+    ranks: owned, ghosts, neigh, bonds, plate (plates: the bottom and top plates' heights, m;
+    owners: pair_owners(data), when already found for another rank count)."""
     box, x, r = data.box, data.x, 0.5 * data.diameter
     procgrid = grid(ranks, box[:, 1] - box[:, 0])
     cell = owner_cells(x, box, procgrid)
@@ -84,18 +101,7 @@ def counts(data, ranks, plates):
             inside &= (x[:, k] >= edges[k][c[k]] - CUT_COMM) & (x[:, k] < edges[k][c[k] + 1] + CUT_COMM)
         ghosts[flat] = np.count_nonzero(inside) - out["owned"][flat]
     out["ghosts"] = ghosts
-    # neighbour pairs: closer than r_i + r_j + skin (bonded pairs too: the list keeps them, the
-    # pair skips them)
-    pairs = cKDTree(x).query_pairs(2 * r.max() + SKIN, output_type="ndarray")
-    i, j = pairs[:, 0], pairs[:, 1]
-    near = np.linalg.norm(x[i] - x[j], axis=1) < r[i] + r[j] + SKIN
-    i, j = i[near], j[near]
-    # newton on: a pair across two bricks is listed by the rank of its lower atom (z, then y, then x
-    # decide, as LAMMPS's half/size/bin/newton list keeps a ghost only above its owned atom)
-    xi, xj = x[i], x[j]
-    j_above = (xj[:, 2] > xi[:, 2]) | ((xj[:, 2] == xi[:, 2]) & ((xj[:, 1] > xi[:, 1]) |
-                                                               ((xj[:, 1] == xi[:, 1]) & (xj[:, 0] > xi[:, 0]))))
-    out["neigh"] = np.bincount(rank[np.where(j_above, i, j)], minlength=ranks)
+    out["neigh"] = np.bincount(rank[pair_owners(data) if owners is None else owners], minlength=ranks)
     out["bonds"] = np.bincount(rank[data.index(data.bonds[:, 0])], minlength=ranks)
     zlo, zhi = plates
     plate = (x[:, 2] - r - zlo < PLATE_REACH) | (zhi - x[:, 2] - r < PLATE_REACH)

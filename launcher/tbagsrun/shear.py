@@ -116,7 +116,7 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     fill_vars = dict(preset.bag, **user)
     if preset.estimate:
         out.mkdir(parents=True, exist_ok=True)
-        estimate_paper(out, preset.bag, ranks, user, say)
+        estimate_paper(out, fill_vars, ranks, say)
         if estimate_only:
             return
     else:
@@ -247,15 +247,15 @@ def stage_once(folder, deck, ranks, variables, say, product):
     stamp.write_text(key)
 
 
-def estimate_paper(out, bag, ranks, user, say):
-    """The paper run's cost measured on its own bag: the bag and its fill (the run's own, in out),
+def estimate_paper(out, fill_vars, ranks, say):
+    """The paper run's cost measured on its own bag (fill_vars: its size and the user's -var
+    values): the bag and its fill (the run's own, in out),
     compression and a short shear to a checkpoint (estimate/state), each made once; then a short
     stretch resumed from the checkpoint at 1, 2 and `ranks` ranks (estimate/np<P>) and a few steps
     at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
     scaling model); then the projection (inputs/project_time.py)."""
     counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
     folder = Path(out) / "estimate"
-    fill_vars = dict(bag, **user)
     stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
     e = ESTIMATE

@@ -41,6 +41,7 @@ def loops(text):
     grid (the last processor grid printed before the run, or None)."""
     found = []
     heads = list(LOOP_LINE.finditer(text))
+    grids = [(g.start(), tuple(int(v) for v in g.groups())) for g in GRID_LINE.finditer(text)]
     for k, m in enumerate(heads):
         end = heads[k + 1].start() if k + 1 < len(heads) else len(text)
         body = text[m.end():end]
@@ -50,10 +51,10 @@ def loops(text):
             sections[name] = tuple(v if v is not None else vals[1] for v in vals)
         stats = {name: dict(ave=float(a), max=float(b), min=float(c))
                  for name, a, b, c in HISTO_LINE.findall(body)}
-        grids = GRID_LINE.findall(text[:m.start()])
+        before = [g for at, g in grids if at < m.start()]
         found.append(dict(loop=float(m.group(1)), ranks=int(m.group(2)), steps=int(m.group(3)),
                           atoms=int(m.group(4)), sections=sections, stats=stats,
-                          grid=tuple(int(g) for g in grids[-1]) if grids else None))
+                          grid=before[-1] if before else None))
     return found
 
 

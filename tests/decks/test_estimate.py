@@ -11,7 +11,7 @@ def test_estimate_on_the_tiny_bag(tmp_path, monkeypatch):
     monkeypatch.setattr(shear, "ESTIMATE", dict(v=0.004, du_csv=2e-6, du_dump=4e-6, u_state=4e-6, u_timed=2e-6))
     monkeypatch.setattr(shear, "DECOMPOSITIONS", (4,))
     said = []
-    shear.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, {}, said.append)
+    shear.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, said.append)
     text = (tmp_path / "estimate" / "projection.txt").read_text()
     assert "measured on the 9 x 9 x 5 bag" in text and "Scaling model" in text
     assert "counts at 4 ranks against LAMMPS's (grid, Nlocal, Nghost, Neighs; mean and max): agree" in text
@@ -19,5 +19,5 @@ def test_estimate_on_the_tiny_bag(tmp_path, monkeypatch):
         assert "for 333 steps" in (tmp_path / "estimate" / ("np%d" % p) / "log.shear").read_text()
     # a second call reuses the bag, fill and checkpoint
     said.clear()
-    shear.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, {}, said.append)
+    shear.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, said.append)
     assert sum("done before, reused" in line for line in said) == 3
