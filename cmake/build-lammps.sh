@@ -39,6 +39,9 @@ fi
 key=$(printf '%s|%s|%s|%s' "$src" "${opts[*]}" "$(c++ --version | head -1)" "$(mpicxx --showme:version 2>/dev/null || true)" | sha256sum | cut -c1-10)
 build="$cache/lammps-$version-${san:+asan-}$key"
 lmp="$build/lmp"
+# one build of a tree at a time (a configure and ./tbags setup may ask together): wait for it
+exec 9>"$build.lock"
+flock 9
 if [ ! -x "$lmp" ] || [ ! -f "$build/.tbags-complete" ]; then
   echo "build-lammps: building LAMMPS $version with $packages into $build (about 5 min on 2 cores) ..." >&2
   export CCACHE_DIR=${CCACHE_DIR:-$cache/ccache}

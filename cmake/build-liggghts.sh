@@ -1,20 +1,27 @@
 #!/usr/bin/env bash
-# Build the pinned LIGGGHTS-PUBLIC 3.8.0 (MPI, GCC 12), once, into a cache directory keyed by
-# version, our patch set and the compilers. Prints on stdout:
+# Build the pinned LIGGGHTS-PUBLIC 3.8.0 (MPI, GCC 12) with our styles compiled in, once per
+# version, patch set, our sources and compilers, into a cache directory. Prints on stdout:
 #   LIGGGHTS_SOURCE_DIR=<patched source tree>   LIGGGHTS_EXECUTABLE=<liggghts>
-# Not yet called by ./tbags setup (issue 22): run it by hand, bash cmake/build-liggghts.sh.
 # Usage: build-liggghts.sh [--fetch-only]   (env: TBAGS_CACHE, TBAGS_JOBS, LIGGGHTS_SOURCE_DIR to
 # build a user's tree instead of the pinned one, LIGGGHTS_TARBALL: the tarball at hand)
 #
 # LIGGGHTS has no plugin loader and its CMake build generates its style headers inside src/
-# (Make.sh style), so it builds in a copy of the source tree in the cache. The pinned tarball
-# needs three changes to build with GCC 12 and without VTK (Debian's own patch set is missing
-# from the archive; ours is in cmake/liggghts-patches/, one change per file):
+# (Make.sh style), so it builds in a copy of the source tree in the cache, with our files added:
+#   src-liggghts/*          the LIGGGHTS adapters (contact model, ...) and the user whitelist of
+#                           contact-model combinations that LIGGGHTS compiles optimised
+#   src-plugin/law/*.h      the pure laws they call, as src/law/ (the same files LAMMPS uses)
+#   src-plugin/yarn_table.* the yarn bond's table reader and bond_coeff parser (engine-neutral)
+# Our laws are C++17, so LIGGGHTS builds with -std=c++17 (its own flags otherwise; all of its
+# sources compile so). The pinned tarball needs three changes to build with GCC 12 and without
+# VTK (Debian's own patch set is missing from the archive; ours is in cmake/liggghts-patches/):
 #   01  utils.h int_to_string: a cast of an rvalue stream, which GCC 12 rejects
 #   02  finish.cpp: a pointer ordered against 0, which GCC 12 rejects
 #   and dump_mesh_vtk.{cpp,h} left out (they include VTK's headers unguarded; VTK is not used)
+# A change of our sources makes a new directory; ccache (base dir = the tree) keeps that rebuild
+# to the files that changed. The two newest trees are kept.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/.." && pwd)
 cache=${TBAGS_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tbags}
 jobs=${TBAGS_JOBS:-$(nproc)}
 fetch_only=0
@@ -30,14 +37,19 @@ else
   version=3.8.0
 fi
 [ "$fetch_only" = 1 ] && exit 0
-patches=$(cat "$here"/liggghts-patches/*.patch | sha256sum | cut -c1-10)
-key=$(printf '%s|%s|%s|%s' "$upstream" "$patches" "$(c++ --version | head -1)" \
+flags="-O2 -funroll-loops -fstrict-aliasing -Wall -Wno-uninitialized -std=c++17 -Wno-literal-suffix -fPIC"
+ours=$(cd "$root" && cat cmake/liggghts-patches/*.patch src-liggghts/* src-plugin/law/*.h \
+       src-plugin/yarn_table.* | sha256sum | cut -c1-16)
+key=$(printf '%s|%s|%s|%s|%s' "$upstream" "$ours" "$flags" "$(c++ --version | head -1)" \
       "$(mpicxx --showme:version 2>/dev/null || true)" | sha256sum | cut -c1-10)
 build="$cache/liggghts-$version-$key"
 exe="$build/build/liggghts"
+# one build of a tree at a time (a configure and ./tbags setup may ask together): wait for it
+exec 9>"$build.lock"
+flock 9
 if [ ! -x "$exe" ] || [ ! -f "$build/.tbags-complete" ]; then
-  echo "build-liggghts: building LIGGGHTS $version into $build (about 6 min on 2 cores) ..." >&2
-  export CCACHE_DIR=${CCACHE_DIR:-$cache/ccache}
+  echo "build-liggghts: building LIGGGHTS $version with our styles into $build (6 min on 2 cores, less from ccache) ..." >&2
+  export CCACHE_DIR=${CCACHE_DIR:-$cache/ccache} CCACHE_BASEDIR=$build
   log="$build.log"
   rm -rf "$build"
   mkdir -p "$build"
@@ -46,15 +58,23 @@ if [ ! -x "$exe" ] || [ ! -f "$build/.tbags-complete" ]; then
     patch -s -p1 -d "$build" < "$p" || { echo "build-liggghts: $p does not apply to $upstream" >&2; exit 1; }
   done
   rm -f "$build/src/dump_mesh_vtk.cpp" "$build/src/dump_mesh_vtk.h"
+  cp "$root"/src-liggghts/* "$root"/src-plugin/yarn_table.* "$build/src/"
+  mkdir -p "$build/src/law"
+  cp "$root"/src-plugin/law/*.h "$build/src/law/"
   if ! { cmake -S "$build/src" -B "$build/build" -D CMAKE_BUILD_TYPE=Release \
+           -D "CMAKE_CXX_FLAGS=$flags" \
            -D CMAKE_DISABLE_FIND_PACKAGE_VTK=ON -D CMAKE_CXX_COMPILER_LAUNCHER=ccache \
            -D CMAKE_C_COMPILER_LAUNCHER=ccache &&
          cmake --build "$build/build" --target liggghts_bin -j "$jobs"; } >"$log" 2>&1; then
-    tail -30 "$log" >&2
+    grep -E "error|Error" "$log" | head -20 >&2
     echo "build-liggghts: LIGGGHTS build failed; full log in $log" >&2
     exit 1
   fi
   touch "$build/.tbags-complete"
+  # keep this tree and the one before it
+  ls -1dt "$cache/liggghts-$version-"*/ 2>/dev/null | tail -n +3 | while read -r old; do
+    rm -rf "$old" "${old%/}.log" "${old%/}.lock"
+  done
 fi
 echo "LIGGGHTS_SOURCE_DIR=$build/src"
 echo "LIGGGHTS_EXECUTABLE=$exe"

@@ -1,26 +1,107 @@
-/* T-BAGS DEM toolkit: yarn table reader and shared bond_coeff parsing (see yarn_table.h). */
+/* T-BAGS DEM toolkit: yarn table reader and shared bond_coeff parsing (see yarn_table.h).
+   Engine-neutral: compiled into the LAMMPS plugin and into LIGGGHTS (cmake/build-liggghts.sh),
+   so it uses only what both have: MPI, comm->me, world and error->all(FLERR, text). */
 
 #include "yarn_table.h"
 
 #include "comm.h"
 #include "error.h"
-#include "platform.h"
-#include "table_file_reader.h"
-#include "tokenizer.h"
-#include "utils.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <vector>
 
 using namespace LAMMPS_NS;
+
+namespace {
+
+// stop all ranks with "STYLE: text" (text built with str())
+void fail(LAMMPS *lmp, const char *style, const std::string &text)
+{
+  lmp->error->all(FLERR, (std::string(style) + ": " + text).c_str());
+}
+
+template <class T> std::string str(const T &x)
+{
+  std::ostringstream o;
+  o << x;
+  return o.str();
+}
+
+// a whole word as a finite number
+bool to_double(const char *w, double &x)
+{
+  char *end = nullptr;
+  errno = 0;
+  x = std::strtod(w, &end);
+  return end != w && *end == '\0' && errno == 0 && std::isfinite(x);
+}
+
+// the words of a line, without a '#' comment
+std::vector<std::string> words(const std::string &line)
+{
+  std::istringstream in(line.substr(0, line.find('#')));
+  std::vector<std::string> w;
+  for (std::string s; in >> s;) w.push_back(s);
+  return w;
+}
+
+double number(const std::string &w, const std::string &what)
+{
+  double x;
+  if (!to_double(w.c_str(), x)) throw std::runtime_error(what + ": '" + w + "' is not a number");
+  return x;
+}
+
+// rank 0 reads the section keyword of the file into curve (throws with what is wrong)
+void read_section(const std::string &file, const std::string &keyword, tbags::yarn::Curve &curve,
+                  int &force_table)
+{
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("the file is missing or unreadable");
+  std::string line;
+  bool found = false;
+  while (!found && std::getline(in, line)) {
+    const auto w = words(line);
+    found = !w.empty() && w[0] == keyword;
+  }
+  if (!found) throw std::runtime_error("no section '" + keyword + "'");
+  std::vector<std::string> head;
+  while (head.empty() && std::getline(in, line)) head = words(line);
+  int n = 0;
+  for (size_t k = 0; k < head.size(); k++) {
+    if (head[k] == "N" && k + 1 < head.size()) n = (int) number(head[++k], "the N line");
+    else if (head[k] == "FORCE") force_table = 1;
+    else throw std::runtime_error("unknown word '" + head[k] + "' in the N line");
+  }
+  if (n < 2) throw std::runtime_error("the N line needs 'N n' with n >= 2");
+  for (int i = 0; i < n; i++) {
+    std::vector<std::string> row;
+    while (row.empty() && std::getline(in, line)) row = words(line);
+    if (row.size() < 3) throw std::runtime_error("the table ends after " + str(i) + " lines");
+    curve.eps.push_back(number(row[1], "row " + str(i + 1)));
+    curve.val.push_back(number(row[2], "row " + str(i + 1)));
+  }
+}
+
+// restart I/O: rank 0 reads count items, or stops
+void fread_all(LAMMPS *lmp, void *buf, size_t size, size_t count, FILE *fp)
+{
+  if (fread(buf, size, count, fp) != count) fail(lmp, "yarn bond", "the restart file ends early");
+}
+
+}    // namespace
 
 void LAMMPS_NS::read_yarn_table(LAMMPS *lmp, const char *style, const std::string &file,
                                 const std::string &keyword, tbags::yarn::Curve &curve,
                                 bool &force_table)
 {
-  // rank 0 reads (LAMMPS file readers are rank-0 only) and broadcasts the curve or the error
-  Error *error = lmp->error;
+  // rank 0 reads and broadcasts the curve or the error
   MPI_Comm world = lmp->world;
   curve.eps.clear();
   curve.val.clear();
@@ -28,30 +109,7 @@ void LAMMPS_NS::read_yarn_table(LAMMPS *lmp, const char *style, const std::strin
   std::string why;
   if (lmp->comm->me == 0) {
     try {
-      if (!platform::file_is_readable(file))
-        throw std::runtime_error("the file is missing or unreadable");
-      TableFileReader reader(lmp, file, "bond");
-      char *line = reader.find_section_start(keyword);
-      if (!line) throw std::runtime_error("no section '" + keyword + "'");
-      line = reader.next_line();
-      ValueTokenizer head(line);
-      int n = 0;
-      while (head.has_next()) {
-        const std::string w = head.next_string();
-        if (w == "N") n = head.next_int();
-        else if (w == "FORCE") ftab = 1;
-        else throw std::runtime_error("unknown word '" + w + "' in the N line");
-      }
-      if (n < 2) throw std::runtime_error("the N line needs 'N n' with n >= 2");
-      reader.skip_line();
-      for (int i = 0; i < n; i++) {
-        line = reader.next_line();
-        if (!line) throw std::runtime_error("the table ends after " + std::to_string(i) + " lines");
-        ValueTokenizer values(line);
-        values.next_int();
-        curve.eps.push_back(values.next_double());
-        curve.val.push_back(values.next_double());
-      }
+      read_section(file, keyword, curve, ftab);
     } catch (std::exception &e) {
       why = e.what();
     }
@@ -61,7 +119,7 @@ void LAMMPS_NS::read_yarn_table(LAMMPS *lmp, const char *style, const std::strin
   if (len > 0) {
     why.resize(len);
     MPI_Bcast(&why[0], len, MPI_CHAR, 0, world);
-    error->all(FLERR, "{}: cannot read yarn table {} from {}: {}", style, keyword, file, why);
+    fail(lmp, style, "cannot read yarn table " + keyword + " from " + file + ": " + why);
   }
   int n = (int) curve.eps.size();
   MPI_Bcast(&n, 1, MPI_INT, 0, world);
@@ -72,7 +130,7 @@ void LAMMPS_NS::read_yarn_table(LAMMPS *lmp, const char *style, const std::strin
   MPI_Bcast(curve.val.data(), n, MPI_DOUBLE, 0, world);
   force_table = ftab != 0;
   const char *bad = tbags::yarn::check_curve(curve);
-  if (*bad) error->all(FLERR, "{}: yarn table {} in {}: {}", style, keyword, file, bad);
+  if (*bad) fail(lmp, style, "yarn table " + keyword + " in " + file + ": " + bad);
 }
 
 void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg,
@@ -80,10 +138,9 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
 {
   const bool axial_only = r0 != nullptr;
   if (r0) *r0 = -1.0;
-  Error *error = lmp->error;
   if (narg < 4 || strcmp(arg[1], "table") != 0)
-    error->all(FLERR, "{}: write 'bond_coeff T table FILE KEYWORD diameter D{}'", style,
-               axial_only ? " r0 R0" : " poisson NU");
+    fail(lmp, style, std::string("write 'bond_coeff T table FILE KEYWORD diameter D") +
+                         (axial_only ? " r0 R0'" : " poisson NU'"));
   c.file = arg[2];
   c.keyword = arg[3];
   read_yarn_table(lmp, style, c.file, c.keyword, *c.curve, c.p.force_table);
@@ -94,9 +151,14 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
   for (int iarg = 4; iarg < narg;) {
     const std::string kw = arg[iarg];
     auto need = [&](int n) {
-      if (iarg + n >= narg) error->all(FLERR, "{}: keyword '{}' needs {} value(s)", style, kw, n);
+      if (iarg + n >= narg) fail(lmp, style, "keyword '" + kw + "' needs " + str(n) + " value(s)");
     };
-    auto num = [&](int k) { return utils::numeric(FLERR, arg[iarg + k], false, lmp); };
+    auto num = [&](int k) {
+      double x = 0.0;
+      if (!to_double(arg[iarg + k], x))
+        fail(lmp, style, "keyword '" + kw + "': expected a number, got '" + arg[iarg + k] + "'");
+      return x;
+    };
     if (kw == "diameter") {
       need(1);
       c.p.d = num(1);
@@ -112,7 +174,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
     } else if (axial_only && kw == "damping") {
       need(1);
       c.p.gn = num(1);
-      if (c.p.gn < 0.0) error->all(FLERR, "{}: damping must be >= 0", style);
+      if (c.p.gn < 0.0) fail(lmp, style, "damping must be >= 0");
       iarg += 2;
     } else if (!axial_only && kw == "damping") {
       need(3);
@@ -120,13 +182,13 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
       c.p.gs = num(2);
       c.p.gr = num(3);
       if (c.p.gn < 0.0 || c.p.gs < 0.0 || c.p.gr < 0.0)
-        error->all(FLERR, "{}: damping coefficients must be >= 0", style);
+        fail(lmp, style, "damping coefficients must be >= 0");
       iarg += 4;
     } else if (!axial_only && kw == "unload") {
       need(1);
       if (strcmp(arg[iarg + 1], "plastic") == 0) c.p.plastic = true;
       else if (strcmp(arg[iarg + 1], "elastic") == 0) c.p.plastic = false;
-      else error->all(FLERR, "{}: unload must be elastic or plastic", style);
+      else fail(lmp, style, "unload must be elastic or plastic");
       iarg += 2;
     } else if (!axial_only && kw == "E") {
       need(1);
@@ -140,27 +202,27 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
       need(1);
       kappa = num(1);
       if (kappa < 0.0)
-        error->all(FLERR, "{}: shear coefficient must be >= 0 (0: no shear spring), got {}", style, kappa);
+        fail(lmp, style, "shear coefficient must be >= 0 (0: no shear spring), got " + str(kappa));
       iarg += 2;
     } else {
-      error->all(FLERR, "{}: unknown bond_coeff keyword '{}'", style, kw);
+      fail(lmp, style, "unknown bond_coeff keyword '" + kw + "'");
     }
   }
   if (c.p.d <= 0.0)
-    error->all(FLERR, "{}: bond_coeff needs 'diameter D' with D > 0 (m)", style);
+    fail(lmp, style, "bond_coeff needs 'diameter D' with D > 0 (m)");
   if (axial_only && *r0 <= 0.0)
-    error->all(FLERR, "{}: bond_coeff needs 'r0 R0' with R0 > 0 (m), the unstretched length", style);
+    fail(lmp, style, "bond_coeff needs 'r0 R0' with R0 > 0 (m), the unstretched length");
   const double last = c.curve->eps.back();
   if (brk < 0.0) brk = last;
   if (brk <= 0.0 || brk > last)
-    error->all(FLERR, "{}: break strain {} must be in (0, {}] (the table's last strain)", style, brk, last);
+    fail(lmp, style, "break strain " + str(brk) + " must be in (0, " + str(last) + "] (the table's last strain)");
   c.p.eps_break = brk;
   if (!axial_only) {
     if (nu <= -1.0 || nu >= 0.5)
-      error->all(FLERR, "{}: bond_coeff needs 'poisson NU' with -1 < NU < 0.5 (G = E/2(1+NU))", style);
+      fail(lmp, style, "bond_coeff needs 'poisson NU' with -1 < NU < 0.5 (G = E/2(1+NU))");
     const double E0 = c.p.force_table ? c.curve->slope0() / c.p.area() : c.curve->slope0();
     if (E < 0.0) E = E0;
-    if (E <= 0.0) error->all(FLERR, "{}: E must be > 0 Pa", style);
+    if (E <= 0.0) fail(lmp, style, "E must be > 0 Pa");
     if (kappa < 0.0) kappa = 6.0 * (1.0 + nu) / (7.0 + 6.0 * nu);    // circular section
     c.p.E = E;
     c.p.nu = nu;
@@ -190,23 +252,22 @@ void LAMMPS_NS::write_yarn_coeff(FILE *fp, const YarnCoeff &c)
 
 void LAMMPS_NS::read_yarn_coeff(LAMMPS *lmp, FILE *fp, YarnCoeff &c)
 {
-  Error *error = lmp->error;
   const int me = lmp->comm->me;
   MPI_Comm world = lmp->world;
   int set = 0, n = 0;
-  if (me == 0) utils::sfread(FLERR, &set, sizeof(int), 1, fp, nullptr, error);
+  if (me == 0) fread_all(lmp, &set, sizeof(int), 1, fp);
   MPI_Bcast(&set, 1, MPI_INT, 0, world);
   c.set = set != 0;
   if (!set) return;
-  if (me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
+  if (me == 0) fread_all(lmp, &n, sizeof(int), 1, fp);
   MPI_Bcast(&n, 1, MPI_INT, 0, world);
   c.curve->eps.resize(n);
   c.curve->val.resize(n);
   double v[10];
   if (me == 0) {
-    utils::sfread(FLERR, c.curve->eps.data(), sizeof(double), n, fp, nullptr, error);
-    utils::sfread(FLERR, c.curve->val.data(), sizeof(double), n, fp, nullptr, error);
-    utils::sfread(FLERR, v, sizeof(double), 10, fp, nullptr, error);
+    fread_all(lmp, c.curve->eps.data(), sizeof(double), n, fp);
+    fread_all(lmp, c.curve->val.data(), sizeof(double), n, fp);
+    fread_all(lmp, v, sizeof(double), 10, fp);
   }
   MPI_Bcast(c.curve->eps.data(), n, MPI_DOUBLE, 0, world);
   MPI_Bcast(c.curve->val.data(), n, MPI_DOUBLE, 0, world);
@@ -223,10 +284,10 @@ void LAMMPS_NS::read_yarn_coeff(LAMMPS *lmp, FILE *fp, YarnCoeff &c)
   c.p.force_table = v[9] != 0.0;
   for (std::string *s : {&c.file, &c.keyword}) {
     int len = 0;
-    if (me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);
+    if (me == 0) fread_all(lmp, &len, sizeof(int), 1, fp);
     MPI_Bcast(&len, 1, MPI_INT, 0, world);
     std::vector<char> buf(len);
-    if (me == 0) utils::sfread(FLERR, buf.data(), 1, len, fp, nullptr, error);
+    if (me == 0) fread_all(lmp, buf.data(), 1, len, fp);
     MPI_Bcast(buf.data(), len, MPI_CHAR, 0, world);
     *s = buf.data();
   }

@@ -1,11 +1,11 @@
-"""One way to run LAMMPS with the tbags plugin, shared by the launcher (shear presets), the deck
-tests, the benchmark and the calibration.
+"""One way to run LAMMPS with the tbags plugin (or LIGGGHTS with our styles compiled in), shared
+by the launcher (shear presets), the deck tests, the benchmark and the calibration.
 
 The environment says where things are: TBAGS_LMP (the lmp binary) and LAMMPS_PLUGIN_PATH (the
 folder of tbagsplugin.so, which LAMMPS loads at start), as ./tbags sets them from the build's
-tbags-env.sh. More than one rank runs through mpirun (--oversubscribe; --allow-run-as-root when
-run as root, as Open MPI requires). Decks find the repository's files through ${tbags}, which the
-runner sets to repo_path().
+tbags-env.sh; TBAGS_LIGGGHTS the liggghts binary (engine="liggghts"). More than one rank runs
+through mpirun (--oversubscribe; --allow-run-as-root when run as root, as Open MPI requires).
+Decks find the repository's files through ${tbags}, which the runner sets to repo_path().
 """
 import hashlib
 import os
@@ -25,6 +25,15 @@ def executable():
     if not (Path(lmp).is_file() and os.access(lmp, os.X_OK)):
         raise LaunchError("TBAGS_LMP=%s is not an executable file" % lmp)
     return lmp
+
+
+def liggghts_executable():
+    """The liggghts binary of TBAGS_LIGGGHTS (built by ./tbags setup); stops when it is missing."""
+    exe = os.environ.get("TBAGS_LIGGGHTS", "")
+    if not (exe and Path(exe).is_file() and os.access(exe, os.X_OK)):
+        raise LaunchError("TBAGS_LIGGGHTS=%r is not the liggghts binary: run './tbags setup' "
+                          "(it builds LIGGGHTS with our styles) or run through ./tbags" % exe)
+    return exe
 
 
 def plugin_file():
@@ -65,10 +74,17 @@ def repo_path():
     return link
 
 
-def command(deck, ranks=1, variables=None, args=(), log="log.lammps"):
+def command(deck, ranks=1, variables=None, args=(), log="log.lammps", engine="lammps"):
     """The command line: [mpirun ...] lmp -nocite -log LOG -in DECK -var tbags REPO -var k v ...
-    A variable's value may be a list (an index variable of several values)."""
-    cmd = mpi_prefix(ranks) + [executable(), "-nocite", "-log", str(log), "-in", str(deck)]
+    (engine "liggghts": the liggghts binary, which has no -nocite). A variable's value may be a
+    list (an index variable of several values)."""
+    if engine == "liggghts":
+        head = [liggghts_executable()]
+    elif engine == "lammps":
+        head = [executable(), "-nocite"]
+    else:
+        raise LaunchError("unknown engine %r: lammps or liggghts" % engine)
+    cmd = mpi_prefix(ranks) + head + ["-log", str(log), "-in", str(deck)]
     variables = dict(variables or {})
     variables.setdefault("tbags", repo_path())
     for name, value in variables.items():
@@ -98,14 +114,14 @@ class Result:
 
 
 def run(deck, workdir, ranks=1, variables=None, args=(), log="log.lammps", screen=None,
-        timeout=None, plugin=True):
+        timeout=None, plugin=True, engine="lammps"):
     """Run `deck` (a path) in `workdir` (made if missing) and return its Result, unchecked.
     screen: a file for the screen output, written as the run goes (the output is read back from
     it); else kept in memory. plugin=False: without LAMMPS_PLUGIN_PATH (stock LAMMPS alone); a
-    folder: the plugin built there (another build, for benchmarks)."""
+    folder: the plugin built there (another build, for benchmarks). engine: as command()."""
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
-    cmd = command(deck, ranks, variables, args, log)
+    cmd = command(deck, ranks, variables, args, log, engine)
     env = dict(os.environ)
     env.setdefault("OMP_NUM_THREADS", "1")
     if plugin is False:

@@ -31,9 +31,11 @@ def bag_and_fill(workdir, size=TINY_BAG):
     return Path(workdir)
 
 
-def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, timeout=1200):
+def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, timeout=1200,
+        engine="lammps"):
     """Run `deck` (text, written to in.test, or a path) in workdir; returns the runner's Result
-    (not checked: .check() raises with LAMMPS's first ERROR line)."""
+    (not checked: .check() raises with LAMMPS's first ERROR line). engine: "liggghts" runs the
+    LIGGGHTS build with our styles (TBAGS_LIGGGHTS) instead."""
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     if isinstance(deck, Path):
@@ -41,7 +43,8 @@ def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, ti
     else:
         deck_file = workdir / "in.test"
         deck_file.write_text(textwrap.dedent(deck))
-    return lammps.run(deck_file, workdir, np_ranks, variables, args, timeout=timeout, plugin=plugin_path)
+    return lammps.run(deck_file, workdir, np_ranks, variables, args, timeout=timeout,
+                      plugin=plugin_path, engine=engine)
 
 
 def read_dump(path):

@@ -1,0 +1,25 @@
+# The second engine: LIGGGHTS-PUBLIC 3.8.0 with our styles compiled in (src-liggghts/ and the
+# laws of src-plugin/law/), built once per version, patch set and our sources into the cache by
+# cmake/build-liggghts.sh. Sets LIGGGHTS_EXECUTABLE. -DTBAGS_LIGGGHTS=OFF leaves it out (and its
+# tests); the sanitized build leaves it out (the laws it compiles are the plugin's, checked there).
+option(TBAGS_LIGGGHTS "Build LIGGGHTS-PUBLIC 3.8.0 with the tbags styles and test it" ON)
+set(LIGGGHTS_EXECUTABLE "" CACHE FILEPATH "liggghts binary with the tbags styles (set by build-liggghts.sh)")
+if(TBAGS_LIGGGHTS AND NOT TBAGS_SANITIZE)
+  # a change of our LIGGGHTS sources or of the laws re-runs the configure, hence the build below
+  file(GLOB _lig_deps CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src-liggghts/*
+    ${CMAKE_CURRENT_SOURCE_DIR}/src-plugin/law/*.h ${CMAKE_CURRENT_SOURCE_DIR}/cmake/liggghts-patches/*)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_lig_deps}
+    ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-liggghts.sh ${CMAKE_CURRENT_SOURCE_DIR}/cmake/fetch-liggghts.sh)
+  message(STATUS "tbags: locating the LIGGGHTS build with our styles (first time: fetch + build, 5-10 min)")
+  execute_process(COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-liggghts.sh
+    OUTPUT_VARIABLE _out ERROR_VARIABLE _err RESULT_VARIABLE _rc)
+  if(NOT _rc EQUAL 0)
+    string(STRIP "${_err}" _err)
+    message(FATAL_ERROR "tbags: could not build LIGGGHTS with our styles:\n${_err}\n"
+      "Configure with -DTBAGS_LIGGGHTS=OFF to go on with LAMMPS alone.")
+  endif()
+  string(REGEX MATCH "LIGGGHTS_EXECUTABLE=([^\n]*)" _m "${_out}")
+  set(LIGGGHTS_EXECUTABLE "${CMAKE_MATCH_1}" CACHE FILEPATH "" FORCE)
+else()
+  set(LIGGGHTS_EXECUTABLE "" CACHE FILEPATH "" FORCE)
+endif()

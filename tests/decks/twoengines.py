@@ -1,0 +1,86 @@
+"""The same particles in LAMMPS (with the tbags plugin) and in LIGGGHTS (with our styles built
+in), for the cross-checks test_liggghts_*.py: data files in each engine's atom style, a thermo
+table of per-atom values both engines print the same way, its reader, and the comparison.
+"""
+import re
+
+import numpy as np
+
+import lmprun
+
+# per-atom values printed each thermo step (equal-style variables cannot read torques in
+# LAMMPS, so both engines go through compute property/atom)
+COLS = ("x", "y", "z", "fx", "fy", "fz", "tqx", "tqy", "tqz", "omegax", "omegay", "omegaz")
+
+
+def data_file(path, atoms, ntypes, bonds=(), engine="lammps", box=(-0.01, 0.01, -0.01, 0.01, -0.005, 0.01)):
+    """atoms: (id, type, diameter, density, (x, y, z), (vx, vy, vz), (wx, wy, wz)); bonds: (i, j)
+    of bond type 1. Spheres alone: atom_style sphere (LAMMPS) or granular (LIGGGHTS); with bonds:
+    bpm/sphere (LAMMPS: id mol type d rho x y z) or hybrid granular molecular (LIGGGHTS: id type
+    x y z d rho mol)."""
+    lines = ["tbags two-engine test", "", "%d atoms" % len(atoms), "%d atom types" % ntypes]
+    if bonds:
+        lines += ["%d bonds" % len(bonds), "1 bond types"]
+    lines += ["", "%.17g %.17g xlo xhi" % box[:2], "%.17g %.17g ylo yhi" % box[2:4],
+              "%.17g %.17g zlo zhi" % box[4:], "", "Atoms", ""]
+    for a in atoms:
+        i, t, d, rho, x = a[0], a[1], a[2], a[3], a[4]
+        if not bonds:
+            lines.append("%d %d %.17g %.17g %.17g %.17g %.17g" % ((i, t, d, rho) + tuple(x)))
+        elif engine == "lammps":
+            lines.append("%d 1 %d %.17g %.17g %.17g %.17g %.17g" % ((i, t, d, rho) + tuple(x)))
+        else:
+            lines.append("%d %d %.17g %.17g %.17g %.17g %.17g 1" % ((i, t) + tuple(x) + (d, rho)))
+    lines += ["", "Velocities", ""]
+    lines += ["%d %.17g %.17g %.17g %.17g %.17g %.17g" % ((a[0],) + tuple(a[5]) + tuple(a[6])) for a in atoms]
+    if bonds:
+        lines += ["", "Bonds", ""]
+        lines += ["%d 1 %d %d" % (k + 1, i, j) for k, (i, j) in enumerate(bonds)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def thermo_block(engine, natoms, every=20, extra=()):
+    """Commands printing COLS of atoms 1..natoms (and the extra thermo keywords) every `every`.
+    An atom's value of a per-atom array is C_ID[i][j] in LAMMPS, c_ID[i][j] in LIGGGHTS (older)."""
+    ref = "C_pa" if engine == "lammps" else "c_pa"
+    out = ["compute pa all property/atom " + " ".join(COLS)]
+    names = []
+    for i in range(1, natoms + 1):
+        for k, c in enumerate(COLS, 1):
+            out.append("variable %s%d equal %s[%d][%d]" % (c, i, ref, i, k))
+            names.append("v_%s%d" % (c, i))
+    out += ["thermo_style custom step %s %s" % (" ".join(extra), " ".join(names)),
+            "thermo_modify format float %.16g", "thermo %d" % every]
+    return "\n".join(out)
+
+
+def thermo(log_text):
+    """The thermo table after the first 'Step' header: {column: array over the printed steps};
+    a variable's column is named without 'v_' (LIGGGHTS's header has none, LAMMPS's has)."""
+    lines = log_text.splitlines()
+    k = next(i for i, l in enumerate(lines) if re.match(r"\s*Step\s", l))
+    cols = [c[2:] if c.startswith("v_") else c for c in lines[k].split()]
+    rows = []
+    for line in lines[k + 1:]:
+        parts = line.split()
+        if len(parts) != len(cols) or not re.match(r"^-?\d", parts[0]):
+            break
+        rows.append([float(v) for v in parts])
+    data = np.array(rows)
+    return {c: data[:, j] for j, c in enumerate(cols)}
+
+
+def run(deck, workdir, engine, ranks=1):
+    """Run deck (text) in workdir with the engine; returns its thermo table."""
+    lmprun.run(deck, workdir, np_ranks=ranks, engine=engine).check(engine)
+    return thermo((workdir / "log.lammps").read_text())
+
+
+def columns(kind, natoms):
+    """Thermo columns of one kind of value (COLS prefix: f, tq, omega, x ...) for all atoms."""
+    return ["%s%d" % (c, i) for i in range(1, natoms + 1) for c in COLS if c.startswith(kind)]
+
+
+def rel(a, b, names):
+    """Largest difference over the named columns, relative to the largest magnitude of each."""
+    return max(float(np.max(np.abs(a[n] - b[n])) / max(np.max(np.abs(b[n])), 1e-300)) for n in names)
