@@ -1,12 +1,13 @@
 """Every example deck (examples/STYLE/in.*, one or more per style) runs to the end, so the
-examples a user starts from cannot rot; the film example's S/F is its film friction."""
+examples a user starts from cannot rot; the film example's S/F is its film friction. The
+LIGGGHTS examples (examples/liggghts/) run in test_liggghts_bond.py."""
 import re
 
 import pytest
 
 import lmprun
 
-EXAMPLES = sorted((lmprun.ROOT / "examples").glob("*/in.*"))
+EXAMPLES = sorted(p for p in (lmprun.ROOT / "examples").glob("*/in.*") if p.parent.name != "liggghts")
 
 
 def test_every_style_has_an_example():

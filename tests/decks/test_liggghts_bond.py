@@ -234,3 +234,13 @@ def test_chain_restart(tmp_path):
             for c in columns("f", 4) + columns("x", 4) + columns("tq", 4))
     print("chain: restarted vs uninterrupted %.2e" % d)
     assert d < 1e-10
+
+
+def test_example_runs(tmp_path):
+    """examples/liggghts/in.bonded_chain: the grain comes to rest on the yarn."""
+    deck = lmprun.ROOT / "examples" / "liggghts" / "in.bonded_chain"
+    res = lmprun.run(deck, tmp_path, variables={"tbags": lmprun.ROOT}, engine="liggghts").check("liggghts")
+    line = next(l for l in res.output.splitlines() if l.startswith("CHAIN EXAMPLE"))
+    gap = float(line.split("rests ")[1].split()[0])
+    print(line)
+    assert 1.0 < gap < 3.5 + 1e-3
