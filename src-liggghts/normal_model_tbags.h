@@ -8,7 +8,10 @@
    LIGGGHTS's own properties: youngsModulus, poissonsRatio (per type), coefficientRestitution,
    coefficientFriction, coefficientRollingFriction (per type pair); rolling EPSD unless
    rollingCDT on, none for a pair whose mu_r is 0. History: 6 values per contact (tangential and
-   rolling displacement), both flipping sign with the pair's order.
+   rolling displacement), both flipping sign with the pair's order, zeroed at the step the
+   contact opens, as in LAMMPS: LIGGGHTS tells a model that a pair has parted (surfacesClose)
+   only within its contact distance factor, which this model raises to 1.01 (a pair would have
+   to part by 1 % of r_i + r_j in one step to skip it).
    build-liggghts.sh copies this file and law/ into the LIGGGHTS tree (no plugin loader there).
 */
 #ifdef NORMAL_MODEL
@@ -20,6 +23,7 @@ NORMAL_MODEL(TBAGS,tbags,20)
 #include "normal_model_base.h"
 #include "global_properties.h"
 #include "force.h"
+#include "neighbor.h"
 #include "update.h"
 #include "law/contact_chain.h"
 
@@ -67,6 +71,7 @@ namespace ContactModels
       registry.connect("coeffRollFrict", mur_, "model tbags");
       ntypes_ = registry.max_type();
       params_.clear();    // rebuilt from the properties at the first contact of the run
+      neighbor->register_contact_dist_factor(1.01);    // surfacesClose() as a contact opens
     }
 
     double stressStrainExponent() { return 1.5; }
@@ -103,7 +108,13 @@ namespace ContactModels
       }
     }
 
-    void surfacesClose(SurfacesCloseData &, ForceData &, ForceData &) {}
+    // a pair (or a particle and a wall) just apart: the contact is over, its history goes
+    void surfacesClose(SurfacesCloseData & scdata, ForceData &, ForceData &)
+    {
+      if (scdata.contact_flags) *scdata.contact_flags &= ~CONTACT_NORMAL_MODEL;
+      if (!scdata.contact_history) return;
+      for (int k = 0; k < 6; k++) scdata.contact_history[history_ + k] = 0.0;
+    }
     void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
     void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
 

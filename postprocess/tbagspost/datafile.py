@@ -1,7 +1,9 @@
 """A LAMMPS data file of the decks (write_data, atom style bpm/sphere): the box, the atoms
-(id, type, diameter, position) and the bonds (first and second atom id).
+(id, molecule, type, diameter, density, position, velocities) and the bonds (first and second
+atom id); write_liggghts() writes the same particles as a LIGGGHTS data file.
 
-bpm/sphere's Atoms lines are: id molecule type diameter density x y z [ix iy iz].
+bpm/sphere's Atoms lines are: id molecule type diameter density x y z [ix iy iz]; Velocities:
+id vx vy vz wx wy wz.
 """
 from pathlib import Path
 
@@ -13,8 +15,9 @@ SECTIONS = ("Atoms", "Velocities", "Bonds", "Masses", "Pair Coeffs", "Bond Coeff
 
 
 class DataFile:
-    """box: 3 x 2 (lo, hi) in m; id, type (int), diameter, x (n x 3) of the atoms; bonds
-    (m x 2 atom ids)."""
+    """box: 3 x 2 (lo, hi) in m; id, mol, type (int), diameter, density, x (n x 3), v and omega
+    (n x 3, zero when the file has no Velocities) of the atoms; bonds (m x 2 atom ids) and
+    bond_type."""
 
     def __init__(self, path):
         path = Path(path)
@@ -34,11 +37,22 @@ class DataFile:
         order = np.argsort(atoms[:, 0])
         atoms = atoms[order]
         self.id = atoms[:, 0].astype(np.int64)
+        self.mol = atoms[:, 1].astype(np.int64)
         self.type = atoms[:, 2].astype(int)
         self.diameter = atoms[:, 3]
+        self.density = atoms[:, 4]
         self.x = atoms[:, 5:8]
+        self.v = np.zeros_like(self.x)
+        self.omega = np.zeros_like(self.x)
+        vel = self._section(lines, "Velocities")
+        if vel is not None:
+            vel = vel[np.argsort(vel[:, 0])]
+            if vel.shape[0] != len(self.id) or (vel[:, 0] != self.id).any():
+                fail("%s: its Velocities do not list the same atoms as its Atoms" % path)
+            self.v, self.omega = vel[:, 1:4], vel[:, 4:7]
         bonds = self._section(lines, "Bonds")
         self.bonds = np.zeros((0, 2), dtype=np.int64) if bonds is None else bonds[:, 2:4].astype(np.int64)
+        self.bond_type = np.zeros(0, dtype=int) if bonds is None else bonds[:, 1].astype(int)
 
     def _section(self, lines, name):
         """The numbers of a section as a float array (rows of its lines), or None."""
@@ -57,3 +71,26 @@ class DataFile:
     def index(self, ids):
         """Row indices of atom ids."""
         return np.searchsorted(self.id, ids)
+
+    def write_liggghts(self, path, ntypes=None):
+        """The particles and bonds as a LIGGGHTS data file (atom_style hybrid granular molecular:
+        Atoms id type x y z diameter density molecule; Velocities id vx vy vz wx wy wz), every
+        number as written here (%.17g: the same bits). ntypes: atom types to declare (more than
+        the file's, e.g. one for the plates, which LIGGGHTS gives a type of their own)."""
+        ntypes = ntypes or int(self.type.max())
+        out = ["LIGGGHTS data from %s (tbagspost.datafile)" % self.path.name, "",
+               "%d atoms" % len(self.id), "%d atom types" % ntypes]
+        if len(self.bonds):
+            out += ["%d bonds" % len(self.bonds), "%d bond types" % self.bond_type.max()]
+        out.append("")
+        out += ["%.17g %.17g %slo %shi" % (lo, hi, a, a) for (lo, hi), a in zip(self.box, "xyz")]
+        out += ["", "Atoms  # id type x y z diameter density molecule", ""]
+        out += ["%d %d %.17g %.17g %.17g %.17g %.17g %d" % (i, t, x[0], x[1], x[2], d, rho, m)
+                for i, t, x, d, rho, m in zip(self.id, self.type, self.x, self.diameter, self.density, self.mol)]
+        out += ["", "Velocities", ""]
+        out += ["%d %.17g %.17g %.17g %.17g %.17g %.17g" % ((i,) + tuple(v) + tuple(w))
+                for i, v, w in zip(self.id, self.v, self.omega)]
+        if len(self.bonds):
+            out += ["", "Bonds", ""]
+            out += ["%d %d %d %d" % (k + 1, t, a, b) for k, (t, (a, b)) in enumerate(zip(self.bond_type, self.bonds))]
+        Path(path).write_text("\n".join(out) + "\n")

@@ -1,0 +1,28 @@
+#!/usr/bin/python3
+"""A filled bag of the LAMMPS decks (write_data, atom style bpm/sphere) as a LIGGGHTS data file
+(atom_style hybrid granular molecular), the same numbers to the bit; atom types 1 (bag) and 2
+(sand) as in LAMMPS, and a third type declared for the plates.
+
+    /usr/bin/python3 inputs/liggghts/convert_fill.py fill.data fill.liggghts.data
+"""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+from tbagspost.datafile import DataFile  # noqa: E402
+
+PLATE_TYPES = 1    # LIGGGHTS gives walls a particle type of their own (model.lig: type 3)
+
+
+def main(argv):
+    if len(argv) != 3:
+        print(__doc__.strip())
+        return 2
+    data = DataFile(argv[1])
+    data.write_liggghts(argv[2], ntypes=int(data.type.max()) + PLATE_TYPES)
+    print("wrote %s: %d atoms, %d bonds" % (argv[2], len(data.id), len(data.bonds)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
