@@ -13,6 +13,8 @@ compute() per contact-step: independent of machine load, for comparing kernels.
 usage: ./tbags bench [--atoms-per-cell N] [--rep R] [--steps S] [--ranks 1,2] [--repeat K] [--callgrind S]
        ./tbags bench --whole [--ranks 1,2] [--repeat K] [--steps S] [--state DIR] [--compare DIR]
                                                                    (bench/whole.py)
+       ./tbags bench --engines [--ranks 1,2] [--repeat K] [--steps S] [--fill FILE]
+                                                                   (bench/engines.py)
 """
 import argparse
 import re
@@ -86,11 +88,20 @@ def main():
                     "time (e.g. runs/paper/estimate/state); default the demo bag at u = 1 mm")
     ap.add_argument("--compare", metavar="DIR", help="--whole: also time the plugin in DIR (another "
                     "build's plugin folder) in the same rotation")
+    ap.add_argument("--engines", action="store_true",
+                    help="LAMMPS against LIGGGHTS (our styles in both) on a filled bag between plates (bench/engines.py)")
+    ap.add_argument("--fill", metavar="FILE", help="--engines: a LAMMPS fill.data (default: the demo bag's)")
     args = ap.parse_args()
     if (args.state or args.compare) and not args.whole:
         ap.error("--state and --compare are options of --whole")
     if args.compare and not (Path(args.compare) / "tbagsplugin.so").is_file():
         ap.error("--compare %s: no tbagsplugin.so there" % args.compare)
+    if args.fill and not args.engines:
+        ap.error("--fill is an option of --engines")
+    if args.engines:
+        import engines
+        engines.main(args.fill, args.steps or 2000, [int(r) for r in args.ranks.split(",")], args.repeat)
+        return
     if args.whole:
         import whole
         whole.whole([int(r) for r in args.ranks.split(",")], args.repeat, args.steps or 4444,

@@ -30,6 +30,9 @@ def log_timestep(path):
 
 LOOP_LINE = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 SECTION_LINE = re.compile(r"^(Pair|Bond|Neigh|Comm|Output|Modify|Other)\s*\|([^|]*)\|([^|]*)\|([^|]*)\|", re.M)
+# LIGGGHTS (the LAMMPS of 2013) prints "Pair  time (%) = T (P)", the average over the ranks
+OLD_SECTION_LINE = re.compile(r"^(Pair|Bond|Neigh|Comm|Outpt|Modfy|Modify|Other)\s+time \(%\) = (\S+) \(", re.M)
+OLD_NAMES = {"Outpt": "Output", "Modfy": "Modify"}
 HISTO_LINE = re.compile(r"^(Nlocal|Nghost|Neighs):\s*(\S+) ave\s+(\S+) max\s+(\S+) min", re.M)
 GRID_LINE = re.compile(r"^\s*(\d+) by (\d+) by (\d+) MPI processor grid", re.M)
 
@@ -37,8 +40,9 @@ GRID_LINE = re.compile(r"^\s*(\d+) by (\d+) by (\d+) MPI processor grid", re.M)
 def loops(text):
     """Every completed run of a LAMMPS log or screen output, in order: dicts of loop (s), ranks,
     steps, atoms, sections (name -> (min, avg, max) seconds over the ranks; Other has its avg
-    only), stats (Nlocal, Nghost, Neighs -> dict ave, max, min; when LAMMPS printed them) and
-    grid (the last processor grid printed before the run, or None)."""
+    only; LIGGGHTS's logs: the average as all three), stats (Nlocal, Nghost, Neighs -> dict ave,
+    max, min; when LAMMPS printed them) and grid (the last processor grid printed before the
+    run, or None)."""
     found = []
     heads = list(LOOP_LINE.finditer(text))
     grids = [(g.start(), tuple(int(v) for v in g.groups())) for g in GRID_LINE.finditer(text)]
@@ -49,6 +53,8 @@ def loops(text):
         for name, *cols in SECTION_LINE.findall(body):
             vals = [float(c) if c.strip() else None for c in cols]
             sections[name] = tuple(v if v is not None else vals[1] for v in vals)
+        for name, t in OLD_SECTION_LINE.findall(body):
+            sections[OLD_NAMES.get(name, name)] = (float(t),) * 3
         stats = {name: dict(ave=float(a), max=float(b), min=float(c))
                  for name, a, b, c in HISTO_LINE.findall(body)}
         before = [g for at, g in grids if at < m.start()]

@@ -5,16 +5,12 @@ in LAMMPS (pair gran/hertz/rolling, bpm/yarn, fix wall/gran/servo): every partic
 torque and position agree to round-off, on 1 and 2 LIGGGHTS ranks. The whole model at once:
 bag-bag, bag-sand and sand-sand contacts, bonded neighbours touching, yarn bonds, plates."""
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 import lmprun
-
-sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
-from tbagspost.datafile import DataFile  # noqa: E402
+from twoengines import DataFile, bag_deck_lammps, bag_deck_liggghts, convert, top_plate
 
 STEPS = 300
 FIELDS = "id x y z fx fy fz tqx tqy tqz"
@@ -30,50 +26,6 @@ def last_dump(path):
     return {c: data[:, j] for j, c in enumerate(cols)}
 
 
-def top_plate(fill):
-    """A top plate 20 um into the highest particle, so that both plates press."""
-    d = DataFile(fill)
-    return float(np.max(d.x[:, 2] + 0.5 * d.diameter)) - 2e-5
-
-
-def lammps_deck(ztop):
-    plate = "material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 " \
-            "coeff 2 friction 1e10 rolling 0.05 restitution 0.2"
-    return f"""
-units si
-atom_style bpm/sphere
-boundary f f f
-comm_modify vel yes cutoff 0.010
-newton on off
-read_data fill.data
-special_bonds lj 1 1 1 coul 1 1 1
-include ${{tbags}}/inputs/sand.lmp
-pair_style gran/hertz/rolling epsd
-pair_coeff 1 1 material 0.75e9 0.1 friction 0.26 rolling 0.05 restitution 0.2
-pair_coeff 2 2 material ${{sand_E}} ${{sand_nu}} friction ${{sand_mu}} rolling ${{sand_mur}} restitution 0.2
-pair_coeff 1 2 friction 0.26 rolling 0.05 restitution 0.2
-include ${{tbags}}/inputs/yarn.lmp
-timestep 1.5e-6
-fix bottom all wall/gran/servo zplane -0.0025 +1 {plate}
-fix top all wall/gran/servo zplane {ztop!r} -1 {plate}
-fix integrate all nve/sphere
-fix gravity all gravity 9.81 vector 0 0 -1
-run {STEPS}
-write_dump all custom end.dump {FIELDS} modify sort id format float %.17g
-"""
-
-
-def liggghts_deck(ztop):
-    return f"""
-variable fill string fill.liggghts.data
-include ${{tbags}}/inputs/liggghts/model.lig
-fix top all wall/gran model tbags primitive type 3 zplane {ztop!r}
-dump end all custom {STEPS} end.dump {FIELDS}
-dump_modify end sort id format "%d{' %.17g' * 9}"
-run {STEPS}
-"""
-
-
 @pytest.fixture(scope="module")
 def runs(tiny_filled, tmp_path_factory):
     fill = tiny_filled / "fill.data"
@@ -81,14 +33,13 @@ def runs(tiny_filled, tmp_path_factory):
     out = {}
     wd = tmp_path_factory.mktemp("lammps")
     (wd / "fill.data").write_bytes(fill.read_bytes())
-    lmprun.run(lammps_deck(ztop), wd).check()
+    lmprun.run(bag_deck_lammps(ztop, STEPS, FIELDS), wd).check()
     out["lammps"] = last_dump(wd / "end.dump")
     for ranks in (1, 2):
         wd = tmp_path_factory.mktemp("liggghts%d" % ranks)
-        subprocess.run([sys.executable, str(lmprun.ROOT / "inputs" / "liggghts" / "convert_fill.py"),
-                        str(fill), str(wd / "fill.liggghts.data")], check=True, capture_output=True)
+        convert(fill, wd / "fill.liggghts.data")
         # 2 ranks: split across x, through the bag (LIGGGHTS's own grid splits z, above the bag)
-        lmprun.run(liggghts_deck(ztop), wd, np_ranks=ranks, engine="liggghts",
+        lmprun.run(bag_deck_liggghts(ztop, STEPS, FIELDS), wd, np_ranks=ranks, engine="liggghts",
                    variables={"procs": "%d 1 1" % ranks}).check("liggghts")
         out["liggghts%d" % ranks] = last_dump(wd / "end.dump")
         out["log%d" % ranks] = (wd / "log.lammps").read_text()
@@ -101,8 +52,7 @@ def diff(a, b, cols):
 
 def test_converter_keeps_every_number(tiny_filled, tmp_path):
     fill = tiny_filled / "fill.data"
-    subprocess.run([sys.executable, str(lmprun.ROOT / "inputs" / "liggghts" / "convert_fill.py"),
-                    str(fill), str(tmp_path / "out.data")], check=True, capture_output=True)
+    convert(fill, tmp_path / "out.data")
     a = DataFile(fill)
     text = (tmp_path / "out.data").read_text()
     assert "3 atom types" in text and "%d bonds" % len(a.bonds) in text

@@ -1,12 +1,17 @@
 """The same particles in LAMMPS (with the tbags plugin) and in LIGGGHTS (with our styles built
-in), for the cross-checks test_liggghts_*.py: data files in each engine's atom style, a thermo
-table of per-atom values both engines print the same way, its reader, and the comparison.
+in), for the cross-checks test_liggghts_*.py and the engines' benchmark (bench/engines.py): data
+files in each engine's atom style, a thermo table of per-atom values both engines print the same
+way, its reader, the comparison, and the decks of a filled bag pressed between two plates.
 """
 import re
+import sys
 
 import numpy as np
 
 import lmprun
+
+sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
+from tbagspost.datafile import DataFile  # noqa: E402
 
 # per-atom values printed each thermo step (equal-style variables cannot read torques in
 # LAMMPS, so both engines go through compute property/atom)
@@ -84,3 +89,59 @@ def columns(kind, natoms):
 def rel(a, b, names):
     """Largest difference over the named columns, relative to the largest magnitude of each."""
     return max(float(np.max(np.abs(a[n] - b[n])) / max(np.max(np.abs(b[n])), 1e-300)) for n in names)
+
+
+def top_plate(fill):
+    """A top plate 20 um into the highest particle, so that both plates press."""
+    d = DataFile(fill)
+    return float(np.max(d.x[:, 2] + 0.5 * d.diameter)) - 2e-5
+
+
+def bag_deck_lammps(ztop, steps, fields):
+    """A filled bag (fill.data) pressed between a fixed bottom plate and a top plate at ztop,
+    with gravity, for `steps`; writes end.dump (id and the fields, sorted, every digit) at the
+    end. The model of inputs/between_plates.lmp, sand.lmp and yarn.lmp."""
+    plate = "material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 " \
+            "coeff 2 friction 1e10 rolling 0.05 restitution 0.2"
+    return f"""
+units si
+atom_style bpm/sphere
+boundary f f f
+comm_modify vel yes cutoff 0.010
+newton on off
+read_data fill.data
+special_bonds lj 1 1 1 coul 1 1 1
+include ${{tbags}}/inputs/sand.lmp
+pair_style gran/hertz/rolling epsd
+pair_coeff 1 1 material 0.75e9 0.1 friction 0.26 rolling 0.05 restitution 0.2
+pair_coeff 2 2 material ${{sand_E}} ${{sand_nu}} friction ${{sand_mu}} rolling ${{sand_mur}} restitution 0.2
+pair_coeff 1 2 friction 0.26 rolling 0.05 restitution 0.2
+include ${{tbags}}/inputs/yarn.lmp
+timestep 1.5e-6
+fix bottom all wall/gran/servo zplane -0.0025 +1 {plate}
+fix top all wall/gran/servo zplane {ztop!r} -1 {plate}
+fix integrate all nve/sphere
+fix gravity all gravity 9.81 vector 0 0 -1
+run {steps}
+write_dump all custom end.dump {fields} modify sort id format float %.17g
+"""
+
+
+def bag_deck_liggghts(ztop, steps, fields):
+    """The same in LIGGGHTS (inputs/liggghts/model.lig, fill.liggghts.data): end.dump holds the
+    first and the last step."""
+    return f"""
+variable fill string fill.liggghts.data
+include ${{tbags}}/inputs/liggghts/model.lig
+fix top all wall/gran model tbags primitive type 3 zplane {ztop!r}
+dump end all custom {steps} end.dump {fields}
+dump_modify end sort id format "%d{' %.17g' * 9}"
+run {steps}
+"""
+
+
+def convert(fill, out):
+    """inputs/liggghts/convert_fill.py: a LAMMPS fill as a LIGGGHTS data file."""
+    import subprocess
+    subprocess.run([sys.executable, str(lmprun.ROOT / "inputs" / "liggghts" / "convert_fill.py"),
+                    str(fill), str(out)], check=True, capture_output=True)

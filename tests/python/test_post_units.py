@@ -13,7 +13,7 @@ ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(ROOT / "postprocess"))
 from tbagspost import cli, dumps  # noqa: E402
 from tbagspost.progress import Progress  # noqa: E402
-from tbagspost.run import Run  # noqa: E402
+from tbagspost.run import Run, loops  # noqa: E402
 
 BOX = "ITEM: BOX BOUNDS ff ff ff\n-0.02 0.06\n-0.03 0.06\n-0.01 0.065\n"
 # id type radius x y z vx vy vz dx dy dz, not in id order (LAMMPS writes in rank order)
@@ -198,3 +198,20 @@ def test_wall_bulge_and_top_gap_on_a_known_shape():
     assert len(gaps) == 7 * 7 and gaps.max() == pytest.approx(0.8) and np.median(gaps) == pytest.approx(0.1)
     x, gap = shape.gap_profile(g, z_top, section.in_xz(g, section.S / 2) & g.bag)
     assert gap.max() == pytest.approx(0.8) and np.sum(gap > 0.15) == 1
+
+
+def test_loop_summaries_of_both_engines():
+    """tbagspost.run.loops reads LAMMPS's section table and LIGGGHTS's older 'time (%)' lines."""
+    lammps = ("Loop time of 2.5 on 2 procs for 100 steps with 50 atoms\n\n"
+              "Section |  min time  |  avg time  |  max time  |%varavg| %total\n"
+              "---------------------------------------------------------------\n"
+              "Pair    | 1.0        | 1.2        | 1.4        |   1.0 | 48.00\n"
+              "Other   |            | 0.3        |            |       | 12.00\n")
+    liggghts = ("Loop time of 3.5 on 1 procs for 200 steps with 60 atoms, finish time Wed\n\n\n"
+                "Pair  time (%) = 2.25 (64.3)\nBond  time (%) = 0.5 (14.3)\n"
+                "Outpt time (%) = 0.25 (7.1)\nOther time (%) = 0.5 (14.3)\n")
+    a, b = loops(lammps)[0], loops(liggghts)[0]
+    assert (a["loop"], a["ranks"], a["steps"], a["atoms"]) == (2.5, 2, 100, 50)
+    assert a["sections"] == {"Pair": (1.0, 1.2, 1.4), "Other": (0.3, 0.3, 0.3)}
+    assert (b["loop"], b["ranks"], b["steps"], b["atoms"]) == (3.5, 1, 200, 60)
+    assert b["sections"] == {"Pair": (2.25,) * 3, "Bond": (0.5,) * 3, "Output": (0.25,) * 3, "Other": (0.5,) * 3}
