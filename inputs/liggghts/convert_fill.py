@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """A filled bag of the LAMMPS decks (write_data, atom style bpm/sphere) as a LIGGGHTS data file
 (atom_style hybrid granular molecular), the same numbers to the bit; atom types 1 (bag) and 2
-(sand) as in LAMMPS, and a third type declared for the plates.
+(sand) as in LAMMPS, and a third type declared for the plates. The box is widened by 20 mm on
+each side in x and y: LIGGGHTS keeps a mesh (the top plate, which moves sideways by u) inside
+the box, and the plate must still cover the bag at the end of the shear.
 
     /usr/bin/python3 inputs/liggghts/convert_fill.py fill.data fill.liggghts.data
 """
@@ -12,6 +14,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
 from tbagspost.datafile import DataFile  # noqa: E402
 
 PLATE_TYPES = 1    # LIGGGHTS gives walls a particle type of their own (model.lig: type 3)
+MARGIN = 0.02      # m added to the box on each side in x and y
 
 
 def main(argv):
@@ -19,6 +22,8 @@ def main(argv):
         print(__doc__.strip())
         return 2
     data = DataFile(argv[1])
+    data.box[:2, 0] -= MARGIN
+    data.box[:2, 1] += MARGIN
     data.write_liggghts(argv[2], ntypes=int(data.type.max()) + PLATE_TYPES)
     print("wrote %s: %d atoms, %d bonds" % (argv[2], len(data.id), len(data.bonds)))
     return 0
