@@ -11,7 +11,8 @@ from . import ROOT, LaunchError
 from .presets import PRESETS
 from .shear import run_preset, run_realizations
 
-USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)] [-var name value ...]
+USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)]
+                    [--engine lammps|liggghts] [-var name value ...]
 Bag (inputs/in.bag), fill (in.fill), simple shear (in.shear), then figures. -var values override
 the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufinal, dt, seed...).
 --out DIR: write there instead of runs/<preset>/ (runs/shear-demo/ for demo).
@@ -19,6 +20,9 @@ the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufi
 default 4821), each with the preset's shear runs, side by side where cores allow, in
 runs/<preset>/r1 ... rN; then the mean curves with their spread and the table of peak S, S at
 5 mm, contraction and dilatancy in runs/<preset>/realizations/ (./tbags plot --realizations).
+--engine liggghts: the shear runs in LIGGGHTS with our styles (doc/liggghts.rst) from the same
+LAMMPS fill (presets of shear runs: demo, trends, quasistatic), into runs/<preset>-liggghts/;
+figures: S-u and w-u.
 Presets:"""
 
 
@@ -39,7 +43,8 @@ def positive(option, text, what="a positive number"):
 
 
 def parse(argv):
-    """-> preset, ranks, out, realizations, estimate_only, seed, variables, extra LAMMPS args."""
+    """-> preset, ranks, out, realizations, estimate_only, seed, variables, extra LAMMPS args,
+    engine."""
     args = list(argv)
     preset = PRESETS["demo"]
     if args and not args[0].startswith("-"):
@@ -49,6 +54,7 @@ def parse(argv):
                               % (name, ", ".join(PRESETS)))
         preset = PRESETS[name]
     ranks, out, nreal, estimate, seed = len(os.sched_getaffinity(0)), None, 1, False, 4821
+    engine = "lammps"
     variables, extra = {}, []
     while args:
         a = args.pop(0)
@@ -56,6 +62,10 @@ def parse(argv):
             if not preset.estimate:
                 raise LaunchError("shear: --estimate is for the paper preset")
             estimate = True
+        elif a == "--engine":
+            engine = args.pop(0) if args else ""
+            if engine not in ("lammps", "liggghts"):
+                raise LaunchError("shear: --engine must be lammps or liggghts")
         elif a == "--realizations":
             nreal = positive(a, args.pop(0) if args else "")
         elif a == "--out":
@@ -86,7 +96,10 @@ def parse(argv):
     if nreal > 1 and not preset.realizations:
         raise LaunchError("shear: --realizations is not for the %s preset (hours or days per "
                           "realization): run it with -var seed S and --out DIR per seed" % preset.name)
-    return preset, ranks, out, nreal, estimate, seed, variables, extra
+    if engine == "liggghts" and (preset.estimate or any(r.deck != "shear" for r in preset.runs)):
+        raise LaunchError("shear: --engine liggghts runs the shear test only (presets demo, trends, "
+                          "quasistatic); LIGGGHTS has no decks for %s yet" % preset.name)
+    return preset, ranks, out, nreal, estimate, seed, variables, extra, engine
 
 
 def set_up():
@@ -105,18 +118,19 @@ def shear(argv):
     if argv and argv[0] in ("--help", "-h", "help"):
         print(usage())
         return
-    preset, ranks, out, nreal, estimate, seed, variables, extra = parse(argv)
+    preset, ranks, out, nreal, estimate, seed, variables, extra, engine = parse(argv)
     if extra:
         raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(extra))
-    out = out or ROOT / "runs" / preset.folder
+    out = out or ROOT / "runs" / (preset.folder + ("-liggghts" if engine == "liggghts" else ""))
     set_up()
 
     def say(line):
         print(line, flush=True)
     if nreal > 1:
-        run_realizations(preset, nreal, seed, ranks, out, variables, say)
+        run_realizations(preset, nreal, seed, ranks, out, variables, say, engine)
     else:
-        run_preset(preset, ranks, out, dict(variables, seed=seed), say, estimate_only=estimate)
+        run_preset(preset, ranks, out, dict(variables, seed=seed), say, estimate_only=estimate,
+                   engine=engine)
 
 
 def main(argv):

@@ -8,6 +8,8 @@ Realizations: the same with fills of seeds S, S + 1, ... in r1, r2, ..., as many
 cores allow, then their spread (tbagspost --realizations).
 The paper preset first measures a short stretch of its own bag and projects its time and its
 scaling over ranks (inputs/project_time.py, inputs/scaling.py).
+engine "liggghts": the shear runs in LIGGGHTS instead (inputs/liggghts/in.shear on the LAMMPS
+fill converted), written to the same shear.csv columns; figures: S-u and w-u.
 """
 import json
 import os
@@ -63,6 +65,47 @@ def stage(folder, deck, ranks, variables, say):
             say("  " + line)
 
 
+def stage_liggghts(folder, ranks, variables, say):
+    """inputs/liggghts/in.shear in folder: the run's LAMMPS fill converted (convert_fill.py), then
+    LIGGGHTS on `ranks` ranks (split across x, through the bag), then shear.csv from its means
+    (the columns of in.shear's CSV but the min/max ones and broken_bonds, which LIGGGHTS does not
+    give); stops if it fails."""
+    folder = Path(folder)
+    say("tbags shear: shear (LIGGGHTS) in %s ..." % folder)
+    ok, err = run_python([ROOT / "inputs" / "liggghts" / "convert_fill.py",
+                          folder / str(variables.get("fill", "fill.data")), folder / "fill.liggghts.data"],
+                         stdout=subprocess.DEVNULL)
+    if not ok:
+        raise LaunchError("%s\nshear: could not convert the fill for LIGGGHTS" % err.strip())
+    res = lammps.run(ROOT / "inputs" / "liggghts" / "in.shear", folder, ranks,
+                     dict(variables, fill="fill.liggghts.data", procs="%d 1 1" % ranks),
+                     log="log.shear", screen="screen.shear.txt", engine="liggghts")
+    lines = res.output.splitlines()
+    if res.returncode != 0:
+        errors = [line for line in lines if "ERROR" in line] or lines[-20:]
+        raise LaunchError("\n".join(errors) + "\nshear: the LIGGGHTS shear failed (see %s)"
+                          % (folder / "log.shear"))
+    for line in lines:
+        if SUMMARY.match(line):
+            say("  " + line)
+    means_to_csv(folder / "shear.means.txt", folder / "shear.csv")
+
+
+def means_to_csv(means, csv):
+    """fix ave/time's means of inputs/liggghts/in.shear (step t u w S F_v z_plate, SI) as the
+    shear CSV (time_s, u_mm, w_mm, S_N, Fv_N, zplate_mm, steps: the steps of each row's interval)."""
+    rows = [line.split() for line in Path(means).read_text().splitlines()
+            if line.strip() and not line.startswith("#")]
+    out = ["time_s,u_mm,w_mm,S_N,Fv_N,zplate_mm,steps",
+           "# LIGGGHTS (inputs/liggghts/in.shear): means over each row's interval of steps"]
+    last = 0
+    for r in rows:
+        step, t, u, w, S, F, z = (float(x) for x in r[:7])
+        out.append("%.7f,%.4f,%.4f,%.4f,%.4f,%.4f,%d" % (t, u * 1e3, w * 1e3, S, F, z * 1e3, step - last))
+        last = step
+    Path(csv).write_text("\n".join(out) + "\n")
+
+
 def fresh_dir(folder):
     """An empty folder for a run's outputs. A non-empty folder outside runs/ must be one the
     launcher made (its marker), so that --out never clears a folder of the user's."""
@@ -109,8 +152,10 @@ def run_variables(preset, run, user):
     return variables
 
 
-def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False):
-    """One realization of a preset into `out`; user: the -var values given (they win)."""
+def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False,
+               engine="lammps"):
+    """One realization of a preset into `out`; user: the -var values given (they win); engine:
+    where the shear runs go (the bag and the fill are LAMMPS's)."""
     t0 = time.time()
     out = Path(out)
     fill_vars = dict(preset.bag, **user)
@@ -128,6 +173,8 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
 
     def job(run, r):
+        if engine == "liggghts":
+            return lambda s: stage_liggghts(run_folder(out, run), r, run_variables(preset, run, user), s)
         return lambda s: stage(run_folder(out, run), run.deck, r, run_variables(preset, run, user), s)
 
     if preset.side_by_side and len(preset.runs) > 1:
@@ -138,7 +185,7 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     else:
         for r in preset.runs:
             job(r, ranks)(say)
-    post_process(preset, out, say)
+    post_process(preset, out, say, engine)
     check(preset, out, say, in_realizations)
     say("tbags shear %s: done in %d s. Outputs in %s:" % (preset.name, time.time() - t0, out))
     files = [p for p in list(out.glob("*")) + list(out.glob("*/*")) if p.is_file() and not p.name.startswith("dump.")]
@@ -148,10 +195,12 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
         % len(list(out.rglob("dump.*"))))
 
 
-def post_process(preset, out, say):
+def post_process(preset, out, say, engine="lammps"):
     runs = [run_folder(out, r) for r in preset.runs]
     with open(out / "figures.txt", "w") as fh:
-        if preset.post == "figures":
+        if engine == "liggghts":    # no dumps from LIGGGHTS yet: S-u and w-u
+            ok, err = run_python(["-m", "tbagspost"] + runs + ["--only", "shear"], fh)
+        elif preset.post == "figures":
             ok, err = run_python(["-m", "tbagspost"] + runs + ["--vtk"], fh)
         elif preset.post == "cyclic":
             ok, err = run_python(["-m", "tbagspost"] + runs, fh)
@@ -160,7 +209,9 @@ def post_process(preset, out, say):
     if not ok:
         raise LaunchError("%s\nshear: post-processing failed (./tbags plot %s)"
                           % (err.strip(), " ".join(str(r) for r in runs)))
-    if preset.post == "figures":
+    if engine == "liggghts":
+        say("tbags shear: S-u and w-u in RUN/figures/shear.png; the numbers: %s/figures.txt" % out)
+    elif preset.post == "figures":
         say("tbags shear: figures in RUN/figures/ (S-u and w-u, deformed shape, contact network%s),"
             % (", and %s/figures/shear-overlay.png" % out if len(runs) > 1 else ""))
         say("  ParaView series in RUN/paraview/*.pvd; the numbers behind the figures: %s/figures.txt" % out)
@@ -185,7 +236,7 @@ def check(preset, out, say, in_realizations):
             raise LaunchError("trends: a finding did not hold (above)")
 
 
-def run_realizations(preset, n, seed, ranks, out, user, say):
+def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps"):
     """n realizations of a preset (fills of seeds seed, seed + 1, ...) in out/r1 ... out/rn, as
     many at once as the cores allow, then their spread in out/realizations."""
     t0 = time.time()
@@ -203,7 +254,7 @@ def run_realizations(preset, n, seed, ranks, out, user, say):
                 print(line, file=log, flush=True)
             try:
                 run_preset(preset, each, out / ("r%d" % k), dict(user, seed=seed + k - 1), say_k,
-                           in_realizations=True)
+                           in_realizations=True, engine=engine)
             except LaunchError as e:
                 say_k("tbags: %s" % e)
                 return False

@@ -10,7 +10,8 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "launcher"))
 from tbagsrun import LaunchError  # noqa: E402
 from tbagsrun.presets import LOADS, PRESETS, Run  # noqa: E402
-from tbagsrun.shear import run_variables  # noqa: E402
+from tbagsrun.shear import means_to_csv, run_variables  # noqa: E402
+from tbagspost.run import read_csv  # noqa: E402
 from tbagsrun.cli import parse, usage  # noqa: E402
 
 
@@ -36,12 +37,13 @@ def test_user_variables_win_and_subfolder_runs_read_the_fill_above():
 
 
 def test_parse_options_variables_and_seed():
-    preset, ranks, out, nreal, estimate, seed, variables, extra = parse(
+    preset, ranks, out, nreal, estimate, seed, variables, extra, engine = parse(
         ["trends", "-np", "3", "--realizations", "2", "-var", "seed", "7", "-var", "amps", "0.25", "1",
          "-var", "v", "0.01"])
-    assert (preset.name, ranks, nreal, seed) == ("trends", 3, 2, 7)
+    assert (preset.name, ranks, nreal, seed, engine) == ("trends", 3, 2, 7, "lammps")
     assert variables == {"amps": ["0.25", "1"], "v": "0.01"} and not extra and out is None
     assert parse([])[0].name == "demo"
+    assert parse(["--engine", "liggghts"])[-1] == "liggghts"
 
 
 @pytest.mark.parametrize("argv, message", [
@@ -53,7 +55,21 @@ def test_parse_options_variables_and_seed():
     (["-var", "seed", "x"], "-var seed needs a positive integer"),
     (["-var", "v"], "-var v needs a value"),
     (["--outt", "x"], "unknown option --outt"),
+    (["--engine", "lampps"], "--engine must be lammps or liggghts"),
+    (["cyclic", "--engine", "liggghts"], "LIGGGHTS has no decks for cyclic yet"),
+    (["paper", "--engine", "liggghts"], "LIGGGHTS has no decks for paper yet"),
 ])
 def test_bad_arguments_say_what_is_wrong(argv, message):
     with pytest.raises(LaunchError, match=message):
         parse(argv)
+
+
+def test_liggghts_means_become_the_shear_csv(tmp_path):
+    """fix ave/time's output of inputs/liggghts/in.shear (SI) as the CSV's columns (mm, N)."""
+    (tmp_path / "m.txt").write_text("# Time-averaged data for fix means\n# TimeStep v_t v_u v_w v_S v_F v_zp\n"
+                                    "4444 0.0033 5e-05 -0.00138 29.95 43.19 0.02245\n"
+                                    "8888 0.0100 0.00015 -0.00137 43.41 43.18 0.02246\n")
+    means_to_csv(tmp_path / "m.txt", tmp_path / "shear.csv")
+    d = read_csv(tmp_path / "shear.csv")
+    assert list(d["u_mm"]) == [0.05, 0.15] and list(d["w_mm"]) == [-1.38, -1.37]
+    assert list(d["S_N"]) == [29.95, 43.41] and list(d["steps"]) == [4444, 4444]
