@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import lmprun
-from twoengines import DataFile, convert, run
+from twoengines import PLATE, DataFile, bag_model_lammps, convert, run
 
 STEPS, EVERY = 40000, 200
 FV, KP, VMAX, TAU = 43.0, 1.0, 0.02, 1e-4    # the tiny bag's F_v (between_plates.lmp's servo)
@@ -21,27 +21,8 @@ def geometry(fill):
 
 
 def lammps_deck(ztop):
-    plate = ("material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 "
-             "coeff 2 friction 1e10 rolling 0.05 restitution 0.2")
-    return f"""
-units si
-atom_style bpm/sphere
-boundary f f f
-comm_modify vel yes cutoff 0.010
-newton on off
-read_data fill.data
-special_bonds lj 1 1 1 coul 1 1 1
-include ${{tbags}}/inputs/sand.lmp
-pair_style gran/hertz/rolling epsd
-pair_coeff 1 1 material 0.75e9 0.1 friction 0.26 rolling 0.05 restitution 0.2
-pair_coeff 2 2 material ${{sand_E}} ${{sand_nu}} friction ${{sand_mu}} rolling ${{sand_mur}} restitution 0.2
-pair_coeff 1 2 friction 0.26 rolling 0.05 restitution 0.2
-include ${{tbags}}/inputs/yarn.lmp
-timestep 1.5e-6
-fix bottom all wall/gran/servo zplane -0.0025 +1 {plate}
-fix top all wall/gran/servo zplane {ztop!r} -1 {plate} servo {FV} gains {KP / FV!r} 0 vmax {VMAX} filter {TAU}
-fix integrate all nve/sphere
-fix gravity all gravity 9.81 vector 0 0 -1
+    servo = f"servo {FV} gains {KP / FV!r} 0 vmax {VMAX} filter {TAU}"
+    return bag_model_lammps(f"{ztop!r} -1 {PLATE} {servo}") + f"""
 variable F equal f_top[3]
 variable speed equal -f_top[22]
 thermo_style custom step v_F v_speed

@@ -97,12 +97,14 @@ def top_plate(fill):
     return float(np.max(d.x[:, 2] + 0.5 * d.diameter)) - 2e-5
 
 
-def bag_deck_lammps(ztop, steps, fields):
-    """A filled bag (fill.data) pressed between a fixed bottom plate and a top plate at ztop,
-    with gravity, for `steps`; writes end.dump (id and the fields, sorted, every digit) at the
-    end. The model of inputs/between_plates.lmp, sand.lmp and yarn.lmp."""
-    plate = "material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 " \
-            "coeff 2 friction 1e10 rolling 0.05 restitution 0.2"
+# the plates' steel with sandpaper, as inputs/between_plates.lmp
+PLATE = ("material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 "
+         "coeff 2 friction 1e10 rolling 0.05 restitution 0.2")
+
+
+def bag_model_lammps(top):
+    """A filled bag (fill.data) with the model of inputs/between_plates.lmp, sand.lmp and
+    yarn.lmp, the fixed bottom plate and gravity; top: the top plate's arguments after 'zplane'."""
     return f"""
 units si
 atom_style bpm/sphere
@@ -118,10 +120,17 @@ pair_coeff 2 2 material ${{sand_E}} ${{sand_nu}} friction ${{sand_mu}} rolling $
 pair_coeff 1 2 friction 0.26 rolling 0.05 restitution 0.2
 include ${{tbags}}/inputs/yarn.lmp
 timestep 1.5e-6
-fix bottom all wall/gran/servo zplane -0.0025 +1 {plate}
-fix top all wall/gran/servo zplane {ztop!r} -1 {plate}
+fix bottom all wall/gran/servo zplane -0.0025 +1 {PLATE}
+fix top all wall/gran/servo zplane {top}
 fix integrate all nve/sphere
 fix gravity all gravity 9.81 vector 0 0 -1
+"""
+
+
+def bag_deck_lammps(ztop, steps, fields):
+    """The bag pressed between the bottom plate and a fixed top plate at ztop for `steps`; writes
+    end.dump (id and the fields, sorted, every digit) at the end."""
+    return bag_model_lammps("%r -1 %s" % (ztop, PLATE)) + f"""
 run {steps}
 write_dump all custom end.dump {fields} modify sort id format float %.17g
 """
