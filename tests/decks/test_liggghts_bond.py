@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lmprun
-from twoengines import columns, data_file, rel, run, thermo_block
+from twoengines import columns, data_file, liggghts_head, rel, run, thermo_block
 
 TABLE = lmprun.ROOT / "inputs" / "yarn_pp_tape.table"
 A, D_YARN, NU_YARN = math.pi * 1e-3 ** 2 / 4, 1e-3, 0.3
@@ -21,27 +21,12 @@ def table():
     return np.array([float(r[1]) for r in rows]), np.array([float(r[2]) for r in rows])
 
 
-def liggghts_head(extra_coeff=""):
+def yarn_head(extra_coeff=""):
     """Spheres with bonds (type 1), our contact model but no contacts (all spheres are one
     molecule, excluded; LIGGGHTS keeps bonded pairs in its pair list whatever special_bonds
-    says), the yarn bond. LIGGGHTS's granular pairs with history need newton off (LAMMPS's
-    decks: newton on off)."""
-    return f"""
-atom_style hybrid granular molecular
-atom_modify map array
-boundary f f f
-newton off
-communicate single vel yes
-units si
-read_data data.txt
-neighbor 0.002 bin
-neigh_modify delay 0 exclude molecule all
-hard_particles yes
-fix m1 all property/global youngsModulus peratomtype 1e9
-fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.3
-fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.05
+    says), the yarn bond. (LAMMPS's decks: newton on off; LIGGGHTS's granular pairs need off.)"""
+    return liggghts_head("hybrid granular molecular", "0.002 bin\nneigh_modify delay 0 exclude molecule all",
+                         (1e9,), (0.3,), (0.5,), (0.3,), (0.05,)) + f"""
 pair_style gran model tbags
 pair_coeff * *
 bond_style bpm/yarn
@@ -60,7 +45,7 @@ def two_bonded(tmp_path, v):
 def pull(tmp_path, v, n, extra=""):
     """strain, axial force on sphere 1 (tension positive) every 100 steps of a constant-speed pull."""
     two_bonded(tmp_path, v)
-    deck = liggghts_head(extra) + f"""
+    deck = yarn_head(extra) + f"""
 group a id 1
 group b id 2
 fix m1a a move linear 0 0 0
@@ -110,7 +95,7 @@ def test_cantilever_tip_deflection(tmp_path):
     atoms = [(k + 1, 1, 0.005, 450.0, (k * r0, 0.0, 0.0), (0, 0, 0), (0, 0, 0)) for k in range(N + 1)]
     data_file(tmp_path / "data.txt", atoms, 1, bonds=[(k, k + 1) for k in range(1, N + 1)],
               engine="liggghts", box=(-0.01, 0.06, -0.01, 0.01, -0.02, 0.01))
-    deck = liggghts_head() + f"""
+    deck = yarn_head() + f"""
 group clamp id 1
 group free subtract all clamp
 group tip id {N + 1}
@@ -173,7 +158,7 @@ run {CHAIN_STEPS}
 
 def chain_liggghts(steps=CHAIN_STEPS, restart="", damping=True):
     """restart: 'write' (stop halfway with a restart file) or 'read' (go on from it)."""
-    head = liggghts_head("damping 0.01 0.01 1e-8" if damping else "")
+    head = yarn_head("damping 0.01 0.01 1e-8" if damping else "")
     if restart == "read":
         head = head.replace("read_data data.txt", "read_restart half.restart")
         # the bond style and its coefficients come from the restart file

@@ -13,7 +13,7 @@ model): it differs by more than 1e-3, which shows the comparison can fail.
 import numpy as np
 import pytest
 
-from twoengines import columns, data_file, rel, run, thermo_block
+from twoengines import columns, data_file, liggghts_head, rel, run, thermo_block
 
 # materials: type 1 bag-like, type 2 sand-like; the plate's (type 2 in the plate run) is steel
 E = {1: 0.75e9, 2: 1.8e9}
@@ -42,8 +42,8 @@ def mu_table(plate):
     return {**MU, (1, 2): MU_PLATE} if plate else MU
 
 
-def pair_matrix(table):
-    return "%g %g %g %g" % (table[(1, 1)], table[(1, 2)], table[(1, 2)], table[(2, 2)])
+def pair_list(table):
+    return (table[(1, 1)], table[(1, 2)], table[(1, 2)], table[(2, 2)])
 
 
 def liggghts_deck(plate, model="model tbags"):
@@ -51,22 +51,9 @@ def liggghts_deck(plate, model="model tbags"):
     e2, nu2 = (E_PLATE, NU_PLATE) if plate else (E[2], NU[2])
     wall = ("fix plate all wall/gran %s primitive type 2 zplane 0.0\n"
             "fix g all gravity %g vector 0 0 -1" % (model, G_PLATE)) if plate else ""
-    return f"""
-atom_style granular
-atom_modify map array
-boundary f f f
-newton off
-communicate single vel yes
-units si
-read_data data.txt
-neighbor 0.0005 bin
-neigh_modify delay 0
-hard_particles yes
-fix m1 all property/global youngsModulus peratomtype {E[1]} {e2}
-fix m2 all property/global poissonsRatio peratomtype {NU[1]} {nu2}
-fix m3 all property/global coefficientRestitution peratomtypepair 2 {pair_matrix(REST)}
-fix m4 all property/global coefficientFriction peratomtypepair 2 {pair_matrix(mu_table(plate))}
-fix m5 all property/global coefficientRollingFriction peratomtypepair 2 {pair_matrix(MUR)}
+    head = liggghts_head("granular", "0.0005 bin\nneigh_modify delay 0", (E[1], e2), (NU[1], nu2),
+                         pair_list(REST), pair_list(mu_table(plate)), pair_list(MUR))
+    return head + f"""
 fix m6 all property/global coefficientRollingViscousDamping peratomtypepair 2 0 0 0 0
 pair_style gran {model}
 pair_coeff * *

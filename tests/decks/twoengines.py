@@ -44,6 +44,30 @@ def data_file(path, atoms, ntypes, bonds=(), engine="lammps", box=(-0.01, 0.01, 
     path.write_text("\n".join(lines) + "\n")
 
 
+def liggghts_head(atom_style, neighbor, E, nu, rest, mu, mur):
+    """A LIGGGHTS deck's start: spheres from data.txt (newton off: LIGGGHTS's granular pairs with
+    history need it), and the materials (per type: E, nu; per type pair, row by row: rest, mu,
+    mur) of contact model tbags."""
+    n = len(E)
+    words = lambda xs: " ".join("%r" % float(x) for x in xs)    # noqa: E731
+    return f"""
+atom_style {atom_style}
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+read_data data.txt
+neighbor {neighbor}
+hard_particles yes
+fix m1 all property/global youngsModulus peratomtype {words(E)}
+fix m2 all property/global poissonsRatio peratomtype {words(nu)}
+fix m3 all property/global coefficientRestitution peratomtypepair {n} {words(rest)}
+fix m4 all property/global coefficientFriction peratomtypepair {n} {words(mu)}
+fix m5 all property/global coefficientRollingFriction peratomtypepair {n} {words(mur)}
+"""
+
+
 def thermo_block(engine, natoms, every=20, extra=()):
     """Commands printing COLS of atoms 1..natoms (and the extra thermo keywords) every `every`.
     An atom's value of a per-atom array is C_ID[i][j] in LAMMPS, c_ID[i][j] in LIGGGHTS (older)."""
