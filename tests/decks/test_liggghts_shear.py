@@ -4,11 +4,15 @@ it 1 mm at the demo's speed. The compression stops at the same step in both (the
 convergence rule, checked every 1000 steps); then the means per 0.1 mm of u agree: the first row
 to 1 %, S over the run to a few % (the engines' round-off differences grow in the packing as two
 realizations' would, but from far closer states), w to 0.05 mm; F_v is held in both."""
+import os
+import subprocess
+
 import numpy as np
 import pytest
 
 import lmprun
 from twoengines import convert
+from tbagspost.run import read_csv  # (postprocess/ is on the path through twoengines)
 
 RUN = {"nx": 9, "ny": 9, "nz": 5, "v": 0.015, "ufinal": 0.001}
 
@@ -56,3 +60,19 @@ def test_same_shear_curve(runs):
     target = 5500 * 7 * 7 / 79 ** 2
     for F in (lig["F"], a["F"]):
         assert np.all(np.abs(F / target - 1) < 0.01)
+
+
+def test_launcher_engine_liggghts(tmp_path):
+    """./tbags shear --engine liggghts end to end on the tiny bag: LAMMPS's bag and fill, the
+    shear in LIGGGHTS, shear.csv in the launcher's columns, the S-u figure."""
+    out = tmp_path / "out"
+    tiny = ["-np", "1", "-var", "nx", "9", "-var", "ny", "9", "-var", "nz", "5", "-var", "v", "0.02",
+            "-var", "ufinal", "0.0003"]
+    env = dict(os.environ, TBAGS_BUILD_DIR=os.environ.get("TBAGS_BUILD", str(lmprun.ROOT / "build")))
+    r = subprocess.run([str(lmprun.ROOT / "tbags"), "shear", "--engine", "liggghts", "--out", str(out)] + tiny,
+                       env=env, capture_output=True, text=True, timeout=900)
+    print(r.stdout[-2000:], r.stderr[-2000:])
+    assert r.returncode == 0 and "shear (LIGGGHTS)" in r.stdout and "SHEARED: u 0.299" in r.stdout
+    d = read_csv(out / "shear.csv")
+    assert len(d) == 3 and abs(d["u_mm"][-1] - 0.25) < 1e-3
+    assert (out / "figures" / "shear.png").is_file()
