@@ -88,16 +88,21 @@ def stage_liggghts(folder, ranks, variables, say):
     for line in lines:
         if SUMMARY.match(line):
             say("  " + line)
-    means_to_csv(folder / "shear.means.txt", folder / "shear.csv")
+    means_to_csv(folder / "shear.means.txt", folder / "shear.csv", folder / "shear.start.txt")
 
 
-def means_to_csv(means, csv):
+def means_to_csv(means, csv, start=None):
     """fix ave/time's means of inputs/liggghts/in.shear (step t u w S F_v z_plate, SI) as the
-    shear CSV (time_s, u_mm, w_mm, S_N, Fv_N, zplate_mm, steps: the steps of each row's interval)."""
+    shear CSV (time_s, u_mm, w_mm, S_N, Fv_N, zplate_mm, steps: the steps of each row's interval),
+    after the row at u = 0 of `start` (shear.start.txt: one step, as LAMMPS's first row)."""
     rows = [line.split() for line in Path(means).read_text().splitlines()
             if line.strip() and not line.startswith("#")]
+    first = Path(start).read_text().split() if start and Path(start).is_file() else None
     out = ["time_s,u_mm,w_mm,S_N,Fv_N,zplate_mm,steps",
            "# LIGGGHTS (inputs/liggghts/in.shear): means over each row's interval of steps"]
+    if first:
+        t, u, w, S, F, z = (float(x) for x in first[1:7])
+        out.append("%.7f,%.4f,%.4f,%.4f,%.4f,%.4f,1" % (t, u * 1e3, w * 1e3, S, F, z * 1e3))
     last = 0
     for r in rows:
         step, t, u, w, S, F, z = (float(x) for x in r[:7])

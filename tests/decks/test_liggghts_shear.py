@@ -74,5 +74,5 @@ def test_launcher_engine_liggghts(tmp_path):
     print(r.stdout[-2000:], r.stderr[-2000:])
     assert r.returncode == 0 and "shear (LIGGGHTS)" in r.stdout and "SHEARED: u 0.299" in r.stdout
     d = read_csv(out / "shear.csv")
-    assert len(d) == 3 and abs(d["u_mm"][-1] - 0.25) < 1e-3
+    assert len(d) == 4 and d["u_mm"][0] == 0 and abs(d["u_mm"][-1] - 0.25) < 1e-3
     assert (out / "figures" / "shear.png").is_file()

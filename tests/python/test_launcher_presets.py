@@ -69,7 +69,8 @@ def test_liggghts_means_become_the_shear_csv(tmp_path):
     (tmp_path / "m.txt").write_text("# Time-averaged data for fix means\n# TimeStep v_t v_u v_w v_S v_F v_zp\n"
                                     "4444 0.0033 5e-05 -0.00138 29.95 43.19 0.02245\n"
                                     "8888 0.0100 0.00015 -0.00137 43.41 43.18 0.02246\n")
-    means_to_csv(tmp_path / "m.txt", tmp_path / "shear.csv")
+    (tmp_path / "s.txt").write_text("0 0.0 0 -0.00139 19.9 43.18 0.02244\n")
+    means_to_csv(tmp_path / "m.txt", tmp_path / "shear.csv", tmp_path / "s.txt")
     d = read_csv(tmp_path / "shear.csv")
-    assert list(d["u_mm"]) == [0.05, 0.15] and list(d["w_mm"]) == [-1.38, -1.37]
-    assert list(d["S_N"]) == [29.95, 43.41] and list(d["steps"]) == [4444, 4444]
+    assert list(d["u_mm"]) == [0, 0.05, 0.15] and list(d["w_mm"]) == [-1.39, -1.38, -1.37]
+    assert list(d["S_N"]) == [19.9, 29.95, 43.41] and list(d["steps"]) == [1, 4444, 4444]
