@@ -129,7 +129,9 @@ def run(deck, workdir, ranks=1, variables=None, args=(), log="log.lammps", scree
     elif plugin is not True:
         env["LAMMPS_PLUGIN_PATH"] = str(plugin)
     if screen is None:
-        proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True, timeout=timeout)
+        # (an engine may print stray bytes, e.g. LIGGGHTS after some errors: never a decode error)
+        proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True,
+                              errors="replace", timeout=timeout)
         return Result(proc.returncode, proc.stdout + proc.stderr, workdir)
     screen = workdir / screen
     with open(screen, "w") as out:
