@@ -5,7 +5,7 @@ their results must agree as two samples of one packing could: within the spread 
 packings (realizations) give, as measured and committed in inputs/results/demo-realizations.csv
 (3 fills: S at 5 mm 567 +- 18 N, contraction 0.148 +- 0.012 mm). Checked: S at u = 5 mm and the
 contraction (tbagspost.realizations' figures of a run) within 2 standard deviations of that
-spread, and F_v held within 1 % in both. About 8 minutes on 1 rank each."""
+spread, and F_v held within 1 % in both. About 10 minutes (1 rank each, LIGGGHTS most of it)."""
 import csv
 
 import numpy as np
