@@ -55,11 +55,16 @@ def stage(folder, deck, ranks, variables, say):
     say("tbags shear: %s in %s ..." % (deck, folder))
     res = lammps.run(ROOT / "inputs" / ("in." + deck), folder, ranks, variables,
                      log="log." + deck, screen="screen.%s.txt" % deck)
+    report(res, "the %s stage" % deck, Path(folder) / ("log." + deck), say)
+
+
+def report(res, what, log, say):
+    """A finished stage: its summary lines said, or LaunchError with its ERROR lines (else its
+    output's end) when it failed."""
     lines = res.output.splitlines()
     if res.returncode != 0:
         errors = [line for line in lines if "ERROR" in line] or lines[-20:]
-        raise LaunchError("\n".join(errors) + "\nshear: the %s stage failed (see %s)"
-                          % (deck, Path(folder) / ("log." + deck)))
+        raise LaunchError("\n".join(errors) + "\nshear: %s failed (see %s)" % (what, log))
     for line in lines:
         if SUMMARY.match(line):
             say("  " + line)
@@ -80,14 +85,7 @@ def stage_liggghts(folder, ranks, variables, say):
     res = lammps.run(ROOT / "inputs" / "liggghts" / "in.shear", folder, ranks,
                      dict(variables, fill="fill.liggghts.data", procs="%d 1 1" % ranks),
                      log="log.shear", screen="screen.shear.txt", engine="liggghts")
-    lines = res.output.splitlines()
-    if res.returncode != 0:
-        errors = [line for line in lines if "ERROR" in line] or lines[-20:]
-        raise LaunchError("\n".join(errors) + "\nshear: the LIGGGHTS shear failed (see %s)"
-                          % (folder / "log.shear"))
-    for line in lines:
-        if SUMMARY.match(line):
-            say("  " + line)
+    report(res, "the LIGGGHTS shear", folder / "log.shear", say)
     means_to_csv(folder / "shear.means.txt", folder / "shear.csv", folder / "shear.start.txt")
 
 
