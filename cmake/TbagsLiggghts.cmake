@@ -5,11 +5,6 @@
 option(TBAGS_LIGGGHTS "Build LIGGGHTS-PUBLIC 3.8.0 with the tbags styles and test it" ON)
 set(LIGGGHTS_EXECUTABLE "" CACHE FILEPATH "liggghts binary with the tbags styles (set by build-liggghts.sh)")
 if(TBAGS_LIGGGHTS AND NOT TBAGS_SANITIZE)
-  # a change of our LIGGGHTS sources or of the laws re-runs the configure, hence the build below
-  file(GLOB _lig_deps CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src-liggghts/*
-    ${CMAKE_CURRENT_SOURCE_DIR}/src-plugin/law/*.h ${CMAKE_CURRENT_SOURCE_DIR}/cmake/liggghts-patches/*)
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_lig_deps}
-    ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-liggghts.sh ${CMAKE_CURRENT_SOURCE_DIR}/cmake/fetch-liggghts.sh)
   message(STATUS "tbags: locating the LIGGGHTS build with our styles (first time: fetch + build, 5-10 min)")
   execute_process(COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-liggghts.sh
     OUTPUT_VARIABLE _out ERROR_VARIABLE _err RESULT_VARIABLE _rc)
@@ -20,6 +15,11 @@ if(TBAGS_LIGGGHTS AND NOT TBAGS_SANITIZE)
   endif()
   string(REGEX MATCH "LIGGGHTS_EXECUTABLE=([^\n]*)" _m "${_out}")
   set(LIGGGHTS_EXECUTABLE "${CMAKE_MATCH_1}" CACHE FILEPATH "" FORCE)
+  # a change of the files the build is keyed on (the script lists them) re-runs the configure,
+  # hence the build above
+  string(REGEX MATCH "LIGGGHTS_DEPENDS=([^\n]*)" _m "${_out}")
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CMAKE_MATCH_1}
+    ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-liggghts.sh ${CMAKE_CURRENT_SOURCE_DIR}/cmake/fetch-liggghts.sh)
 else()
   set(LIGGGHTS_EXECUTABLE "" CACHE FILEPATH "" FORCE)
 endif()

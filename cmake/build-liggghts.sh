@@ -2,6 +2,7 @@
 # Build the pinned LIGGGHTS-PUBLIC 3.8.0 (MPI, GCC 12) with our styles compiled in, once per
 # version, patch set, our sources and compilers, into a cache directory. Prints on stdout:
 #   LIGGGHTS_SOURCE_DIR=<patched source tree>   LIGGGHTS_EXECUTABLE=<liggghts>
+#   LIGGGHTS_DEPENDS=<our files it is keyed on, ;-separated>
 # Usage: build-liggghts.sh [--asan | --fetch-only]   (env: TBAGS_CACHE, TBAGS_JOBS,
 # LIGGGHTS_SOURCE_DIR to build a user's tree instead of the pinned one, LIGGGHTS_TARBALL: the
 # tarball at hand). --asan: with AddressSanitizer + UBSan (./tbags test --sanitize), its own tree.
@@ -43,8 +44,10 @@ else
 fi
 [ "$fetch_only" = 1 ] && exit 0
 flags="-O2 -funroll-loops -fstrict-aliasing -Wall -Wno-uninitialized -std=c++17 -Wno-literal-suffix -fPIC${san:+ $san}"
-ours=$(cd "$root" && cat cmake/liggghts-patches/*.patch src-liggghts/* src-plugin/law/*.h \
-       src-plugin/yarn_table.* | sha256sum | cut -c1-16)
+# the files of ours the build is keyed on (printed too: the configure re-runs when one changes)
+inputs=("$root"/cmake/liggghts-patches/*.patch "$root"/src-liggghts/* "$root"/src-plugin/law/*.h
+        "$root"/src-plugin/yarn_table.*)
+ours=$(cat "${inputs[@]}" | sha256sum | cut -c1-16)
 key=$(printf '%s|%s|%s|%s|%s' "$upstream" "$ours" "$flags" "$(c++ --version | head -1)" \
       "$(mpicxx --showme:version 2>/dev/null || true)" | sha256sum | cut -c1-10)
 build="$cache/liggghts-$version-${san:+asan-}$key"
@@ -83,3 +86,4 @@ if [ ! -x "$exe" ] || [ ! -f "$build/.tbags-complete" ]; then
 fi
 echo "LIGGGHTS_SOURCE_DIR=$build/src"
 echo "LIGGGHTS_EXECUTABLE=$exe"
+echo "LIGGGHTS_DEPENDS=$(IFS=';'; echo "${inputs[*]}")"
