@@ -8,7 +8,6 @@
 #include "error.h"
 #include "fix_bond_history_yarn.h"
 #include "force.h"
-#include "law/yarn_chain.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -82,21 +81,37 @@ void BondBPMYarn::make_history()
   history = static_cast<FixBondHistoryYarn *>(modify->fix[modify->find_fix(HISTORY_ID)]);
 }
 
-// the history slot of the bond own-other on atom own (local), or NULL
-double *BondBPMYarn::slot_of(int own, int other)
+// the index of the bond own-other among atom own's bonds (own local), or -1
+int BondBPMYarn::bond_index(int own, int other) const
 {
   const int tagother = atom->tag[other];
   for (int m = 0; m < atom->num_bond[own]; m++)
-    if (atom->bond_atom[own][m] == tagother) return history->slot(own, m);
-  return NULL;
+    if (atom->bond_atom[own][m] == tagother) return m;
+  return -1;
+}
+
+// the history slot of the bond own-other on atom own (local), or NULL
+double *BondBPMYarn::slot_of(int own, int other)
+{
+  const int m = bond_index(own, other);
+  return m < 0 ? NULL : history->slot(own, m);
+}
+
+// the law's view of the bond i-j
+tbags::yarn::Bond BondBPMYarn::bond_state(int i, int j) const
+{
+  tbags::yarn::Bond b;
+  b.xi = atom->x[i], b.xj = atom->x[j], b.vi = atom->v[i], b.vj = atom->v[j];
+  b.wi = atom->omega[i], b.wj = atom->omega[j];
+  b.dt = update->dt;
+  return b;
 }
 
 void BondBPMYarn::compute(int eflag, int vflag)
 {
   if (eflag || vflag) ev_setup(eflag, vflag);
   else evflag = 0;
-  double **x = atom->x, **v = atom->v, **omega = atom->omega, **f = atom->f,
-         **torque = atom->torque;
+  double **x = atom->x, **f = atom->f, **torque = atom->torque;
   int *tag = atom->tag;
   int **bondlist = neighbor->bondlist;
   const int nbondlist = neighbor->nbondlist, nlocal = atom->nlocal;
@@ -116,19 +131,15 @@ void BondBPMYarn::compute(int eflag, int vflag)
       hist[yarn::R0] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       for (int k = 1; k < yarn::NHISTORY; k++) hist[k] = 0.0;
     }
-    yarn::Bond b;
-    b.xi = x[i1], b.xj = x[i2], b.vi = v[i1], b.vj = v[i2], b.wi = omega[i1], b.wj = omega[i2];
-    b.dt = update->dt;
     yarn::Result o;
-    yarn::compute(coeffs[type].p, b, hist, update_history, o);
+    yarn::compute(coeffs[type].p, bond_state(i1, i2), hist, update_history, o);
     if (h1 && h2) memcpy(h2, h1, sizeof(double) * yarn::NHISTORY);
     if (o.broken) {
       // the bond's type 0 on each local end (the other rank does the same for its end)
       for (int e = 0; e < 2; e++) {
         const int own = e ? i2 : i1, other = e ? i1 : i2;
-        if (own >= nlocal) continue;
-        for (int m = 0; m < atom->num_bond[own]; m++)
-          if (atom->bond_atom[own][m] == tag[other]) atom->bond_type[own][m] = 0;
+        const int m = own < nlocal ? bond_index(own, other) : -1;
+        if (m >= 0) atom->bond_type[own][m] = 0;
       }
       bondlist[n][2] = 0;
       if (i1 < nlocal) nbroken++;
@@ -176,12 +187,8 @@ double BondBPMYarn::single(int type, double, int i, int j, double &fforce)
   if (!h || !(h[yarn::R0] > 0.0)) return 0.0;
   double hist[yarn::NHISTORY];
   memcpy(hist, h, sizeof(hist));
-  yarn::Bond b;
-  b.xi = atom->x[i], b.xj = atom->x[j], b.vi = atom->v[i], b.vj = atom->v[j];
-  b.wi = atom->omega[i], b.wj = atom->omega[j];
-  b.dt = update->dt;
   yarn::Result o;
-  yarn::compute(coeffs[type].p, b, hist, false, o);
+  yarn::compute(coeffs[type].p, bond_state(i, j), hist, false, o);
   fforce = o.r > 0.0 ? -o.fax / o.r : 0.0;
   return yarn::axial_energy(coeffs[type].p, o.eps, hist[yarn::R0]);
 }

@@ -15,6 +15,7 @@ BondStyle(bpm/yarn,BondBPMYarn)
 #define LMP_BOND_BPM_YARN_LIGGGHTS_H
 
 #include "bond.h"
+#include "law/yarn_chain.h"
 #include "yarn_table.h"
 
 #include <vector>
@@ -40,7 +41,9 @@ class BondBPMYarn : public Bond {
   class FixBondHistoryYarn *history;
   int nbroken;
   void allocate();
+  int bond_index(int own, int other) const;
   double *slot_of(int own, int other);
+  tbags::yarn::Bond bond_state(int i, int j) const;
   void make_history();
 };
 
