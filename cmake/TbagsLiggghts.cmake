@@ -1,12 +1,17 @@
 # The second engine: LIGGGHTS-PUBLIC 3.8.0 with our styles compiled in (src-liggghts/ and the
 # laws of src-plugin/law/), built once per version, patch set and our sources into the cache by
 # cmake/build-liggghts.sh. Sets LIGGGHTS_EXECUTABLE. -DTBAGS_LIGGGHTS=OFF leaves it out (and its
-# tests); the sanitized build leaves it out (the laws it compiles are the plugin's, checked there).
+# tests); the sanitized build (TBAGS_SANITIZE) uses a LIGGGHTS built with ASan + UBSan, a tree of
+# its own (about 25 min on 2 cores the first time).
 option(TBAGS_LIGGGHTS "Build LIGGGHTS-PUBLIC 3.8.0 with the tbags styles and test it" ON)
 set(LIGGGHTS_EXECUTABLE "" CACHE FILEPATH "liggghts binary with the tbags styles (set by build-liggghts.sh)")
-if(TBAGS_LIGGGHTS AND NOT TBAGS_SANITIZE)
-  message(STATUS "tbags: locating the LIGGGHTS build with our styles (first time: fetch + build, 5-10 min)")
-  execute_process(COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-liggghts.sh
+if(TBAGS_LIGGGHTS)
+  set(_asan "")
+  if(TBAGS_SANITIZE)
+    set(_asan --asan)
+  endif()
+  message(STATUS "tbags: locating the LIGGGHTS build with our styles ${_asan} (first time: fetch + build, 5-10 min; --asan 25 min)")
+  execute_process(COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-liggghts.sh ${_asan}
     OUTPUT_VARIABLE _out ERROR_VARIABLE _err RESULT_VARIABLE _rc)
   if(NOT _rc EQUAL 0)
     string(STRIP "${_err}" _err)

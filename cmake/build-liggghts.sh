@@ -13,6 +13,7 @@
 #                           contact-model combinations that LIGGGHTS compiles optimised
 #   src-plugin/law/*.h      the pure laws they call, as src/law/ (the same files LAMMPS uses)
 #   src-plugin/yarn_table.* the yarn bond's table reader and bond_coeff parser (engine-neutral)
+#   src-plugin/parse_words.h the word parsing both use
 # Our laws are C++17, so LIGGGHTS builds with -std=c++17 (its own flags otherwise; all of its
 # sources compile so). The pinned tarball gets four changes (Debian's own patch set is missing from
 # the archive; ours is in cmake/liggghts-patches/):
@@ -46,7 +47,7 @@ fi
 flags="-O2 -funroll-loops -fstrict-aliasing -Wall -Wno-uninitialized -std=c++17 -Wno-literal-suffix -fPIC${san:+ $san}"
 # the files of ours the build is keyed on (printed too: the configure re-runs when one changes)
 inputs=("$root"/cmake/liggghts-patches/*.patch "$root"/src-liggghts/* "$root"/src-plugin/law/*.h
-        "$root"/src-plugin/yarn_table.*)
+        "$root"/src-plugin/yarn_table.* "$root"/src-plugin/parse_words.h)
 ours=$(cat "${inputs[@]}" | sha256sum | cut -c1-16)
 key=$(printf '%s|%s|%s|%s|%s' "$upstream" "$ours" "$flags" "$(c++ --version | head -1)" \
       "$(mpicxx --showme:version 2>/dev/null || true)" | sha256sum | cut -c1-10)
@@ -66,7 +67,7 @@ if [ ! -x "$exe" ] || [ ! -f "$build/.tbags-complete" ]; then
     patch -s -p1 -d "$build" < "$p" || { echo "build-liggghts: $p does not apply to $upstream" >&2; exit 1; }
   done
   rm -f "$build/src/dump_mesh_vtk.cpp" "$build/src/dump_mesh_vtk.h"
-  cp "$root"/src-liggghts/* "$root"/src-plugin/yarn_table.* "$build/src/"
+  cp "$root"/src-liggghts/* "$root"/src-plugin/yarn_table.* "$root"/src-plugin/parse_words.h "$build/src/"
   mkdir -p "$build/src/law"
   cp "$root"/src-plugin/law/*.h "$build/src/law/"
   if ! { cmake -S "$build/src" -B "$build/build" -D CMAKE_BUILD_TYPE=Release \

@@ -2,6 +2,8 @@
 
 #include "fix_servo_plate.h"
 
+#include "parse_words.h"
+
 #include "comm.h"
 #include "error.h"
 #include "input.h"
@@ -20,9 +22,8 @@ static const char STYLE[] = "fix servo/plate";
 // a whole word as a finite number, or stop naming the keyword
 static double number(Error *error, const char *kw, const char *w)
 {
-  char *end = NULL;
-  const double x = strtod(w, &end);
-  if (end == w || *end != '\0' || !std::isfinite(x)) {
+  double x;
+  if (!tbags::to_number(w, x)) {
     char msg[256];
     snprintf(msg, sizeof(msg), "%s: %s needs a number, got '%s'", STYLE, kw, w);
     error->all(FLERR, msg);

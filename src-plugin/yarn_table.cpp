@@ -4,6 +4,8 @@
 
 #include "yarn_table.h"
 
+#include "parse_words.h"
+
 #include "comm.h"
 #include "error.h"
 
@@ -33,28 +35,13 @@ template <class T> std::string str(const T &x)
   return o.str();
 }
 
-// a whole word as a finite number
-bool to_double(const char *w, double &x)
-{
-  char *end = nullptr;
-  errno = 0;
-  x = std::strtod(w, &end);
-  return end != w && *end == '\0' && errno == 0 && std::isfinite(x);
-}
-
-// the words of a line, without a '#' comment
-std::vector<std::string> words(const std::string &line)
-{
-  std::istringstream in(line.substr(0, line.find('#')));
-  std::vector<std::string> w;
-  for (std::string s; in >> s;) w.push_back(s);
-  return w;
-}
+using tbags::to_number;
+using tbags::words;
 
 double number(const std::string &w, const std::string &what)
 {
   double x;
-  if (!to_double(w.c_str(), x)) throw std::runtime_error(what + ": '" + w + "' is not a number");
+  if (!to_number(w.c_str(), x)) throw std::runtime_error(what + ": '" + w + "' is not a number");
   return x;
 }
 
@@ -155,7 +142,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
     };
     auto num = [&](int k) {
       double x = 0.0;
-      if (!to_double(arg[iarg + k], x))
+      if (!to_number(arg[iarg + k], x))
         fail(lmp, style, "keyword '" + kw + "': expected a number, got '" + arg[iarg + k] + "'");
       return x;
     };

@@ -72,9 +72,9 @@ def report(res, what, log, say):
 
 def stage_liggghts(folder, ranks, variables, say):
     """inputs/liggghts/in.shear in folder: the run's LAMMPS fill converted (convert_fill.py), then
-    LIGGGHTS on `ranks` ranks (split across x, through the bag), then shear.csv from its means
-    (the columns of in.shear's CSV but the min/max ones and broken_bonds, which LIGGGHTS does not
-    give); stops if it fails."""
+    LIGGGHTS on `ranks` ranks (split across x, through the bag), then shear.csv (in.shear's
+    columns) from its means and per-step trace (deleted unless -var trace 1); stops if it
+    fails."""
     folder = Path(folder)
     say("tbags shear: shear (LIGGGHTS) in %s ..." % folder)
     ok, err = run_python([ROOT / "inputs" / "liggghts" / "convert_fill.py",
@@ -86,25 +86,56 @@ def stage_liggghts(folder, ranks, variables, say):
                      dict(variables, fill="fill.liggghts.data", procs="%d 1 1" % ranks),
                      log="log.shear", screen="screen.shear.txt", engine="liggghts")
     report(res, "the LIGGGHTS shear", folder / "log.shear", say)
-    means_to_csv(folder / "shear.means.txt", folder / "shear.csv", folder / "shear.start.txt")
+    means_to_csv(folder / "shear.means.txt", folder / "shear.csv", folder / "shear.start.txt",
+                 folder / "shear.steps.txt")
+    if str(variables.get("trace", 0)) != "1":    # -var trace 1 keeps it, as in.shear's trace
+        (folder / "shear.steps.txt").unlink()
 
 
-def means_to_csv(means, csv, start=None):
-    """fix ave/time's means of inputs/liggghts/in.shear (step t u w S F_v z_plate, SI) as the
-    shear CSV (time_s, u_mm, w_mm, S_N, Fv_N, zplate_mm, steps: the steps of each row's interval),
-    after the row at u = 0 of `start` (shear.start.txt: one step, as LAMMPS's first row)."""
-    rows = [line.split() for line in Path(means).read_text().splitlines()
-            if line.strip() and not line.startswith("#")]
-    first = Path(start).read_text().split() if start and Path(start).is_file() else None
-    out = ["time_s,u_mm,w_mm,S_N,Fv_N,zplate_mm,steps",
-           "# LIGGGHTS (inputs/liggghts/in.shear): means over each row's interval of steps"]
-    if first:
-        t, u, w, S, F, z = (float(x) for x in first[1:7])
-        out.append("%.7f,%.4f,%.4f,%.4f,%.4f,%.4f,1" % (t, u * 1e3, w * 1e3, S, F, z * 1e3))
+# inputs/in.shear's CSV columns, which the LIGGGHTS run's CSV gives too
+SHEAR_CSV = ("time_s,u_mm,w_mm,S_N,Fv_N,broken_bonds,zplate_mm,steps,w_min_mm,w_max_mm,S_min_N,S_max_N,"
+             "Fv_min_N,Fv_max_N,zplate_min_mm,zplate_max_mm")
+
+
+def means_to_csv(means, csv, start=None, steps=None):
+    """inputs/liggghts/in.shear's outputs (SI) as the shear CSV of inputs/in.shear (mm, N):
+    fix ave/time's means (step t u w S F_v z_plate), after the row at u = 0 of `start`
+    (shear.start.txt: one step, as LAMMPS's first row); the min and max of w, S, F_v and z_plate
+    over each row's interval of steps, and the broken bonds at its last step, from the per-step
+    trace `steps` (shear.steps.txt: step w S F_v z_plate broken). Stops if the trace does not
+    cover every step of every row."""
+    def table(path):
+        return [[float(x) for x in line.split()] for line in Path(path).read_text().splitlines()
+                if line.strip() and not line.startswith("#")]
+
+    def mm(x):
+        return x * 1e3
+
+    out = [SHEAR_CSV, "# LIGGGHTS (inputs/liggghts/in.shear): means over each row's interval of steps "
+           "(min, max beside); broken bonds since the compressed state"]
+    if start and Path(start).is_file():
+        t, u, w, S, F, z = table(start)[0][1:7]
+        out.append(",".join(["%.7f" % t] + ["%.4f" % x for x in (mm(u), mm(w), S, F)] + ["0", "%.4f" % mm(z), "1"]
+                            + ["%.4f" % x for x in (mm(w), mm(w), S, S, F, F, mm(z), mm(z))]))
+    trace = table(steps)
+    k = 0
     last = 0
-    for r in rows:
-        step, t, u, w, S, F, z = (float(x) for x in r[:7])
-        out.append("%.7f,%.4f,%.4f,%.4f,%.4f,%.4f,%d" % (t, u * 1e3, w * 1e3, S, F, z * 1e3, step - last))
+    for step, t, u, w, S, F, z in (r[:7] for r in table(means)):
+        chunk = []
+        while k < len(trace) and trace[k][0] <= step:
+            if trace[k][0] > last:
+                chunk.append(trace[k])
+            k += 1
+        if len(chunk) != step - last:
+            raise LaunchError("shear: %s has %d of the %d steps %d-%d of a row of %s" %
+                              (steps, len(chunk), step - last, last + 1, step, means))
+        cols = list(zip(*chunk))
+        ext = []
+        for c, scale in ((1, 1e3), (2, 1.0), (3, 1.0), (4, 1e3)):
+            ext += [min(cols[c]) * scale, max(cols[c]) * scale]
+        out.append(",".join(["%.7f" % t] + ["%.4f" % x for x in (mm(u), mm(w), S, F)]
+                            + ["%d" % chunk[-1][5], "%.4f" % mm(z), "%d" % (step - last)]
+                            + ["%.4f" % x for x in ext]))
         last = step
     Path(csv).write_text("\n".join(out) + "\n")
 

@@ -13,6 +13,7 @@ import pytest
 import lmprun
 from twoengines import convert
 from tbagspost.run import read_csv  # (postprocess/ is on the path through twoengines)
+from tbagsrun.shear import means_to_csv
 
 RUN = {"nx": 9, "ny": 9, "nz": 5, "v": 0.015, "ufinal": 0.001}
 
@@ -32,7 +33,7 @@ def runs(tiny_filled, tmp_path_factory):
                      variables=dict(RUN, fill="fill.liggghts.data")).check("liggghts")
     m = np.loadtxt(wd / "shear.means.txt")
     lig = {"u": m[:, 2] * 1e3, "w": m[:, 3] * 1e3, "S": m[:, 4], "F": m[:, 5]}
-    return lmp, lig, lmp_log, res.output
+    return lmp, lig, lmp_log, res.output, wd
 
 
 def test_compressed_at_the_same_step(runs):
@@ -62,6 +63,32 @@ def test_same_shear_curve(runs):
         assert np.all(np.abs(F / target - 1) < 0.01)
 
 
+def test_csv_from_the_means_and_the_trace(runs):
+    """The LIGGGHTS run's per-step trace has every shearing step once; averaged over a row's steps
+    it gives fix ave/time's mean of the row (to its 6 printed digits); the CSV made from both has
+    in.shear's columns with min <= mean <= max and no broken bond."""
+    wd = runs[4]
+    m = np.loadtxt(wd / "shear.means.txt")
+    tr = np.loadtxt(wd / "shear.steps.txt")
+    assert np.array_equal(tr[:, 0], np.arange(1, m[-1, 0] + 1))
+    last = 0
+    for row in m:
+        chunk = tr[(tr[:, 0] > last) & (tr[:, 0] <= row[0])]
+        for mc, tc in ((3, 1), (4, 2), (5, 3), (6, 4)):    # w S F_v z_plate
+            assert chunk[:, tc].mean() == pytest.approx(row[mc], rel=2e-5), (row[0], mc)
+        last = row[0]
+    means_to_csv(wd / "shear.means.txt", wd / "shear.csv", wd / "shear.start.txt", wd / "shear.steps.txt")
+    d = read_csv(wd / "shear.csv")
+    for q, unit in (("w", "mm"), ("S", "N"), ("Fv", "N"), ("zplate", "mm")):
+        mean, lo, hi = d["%s_%s" % (q, unit)], d["%s_min_%s" % (q, unit)], d["%s_max_%s" % (q, unit)]
+        assert np.all(lo <= mean + 1e-4) and np.all(mean <= hi + 1e-4)
+    assert np.all(d["S_max_N"][1:] > d["S_min_N"][1:])    # S varies within a row while shearing
+    assert np.all(d["broken_bonds"] == 0)
+    print("LIGGGHTS tiny bag: S spread within a row (max - min) %.2f-%.2f N, F_v %.3f-%.3f N"
+          % ((d["S_max_N"] - d["S_min_N"])[1:].min(), (d["S_max_N"] - d["S_min_N"])[1:].max(),
+             (d["Fv_max_N"] - d["Fv_min_N"])[1:].min(), (d["Fv_max_N"] - d["Fv_min_N"])[1:].max()))
+
+
 def test_launcher_engine_liggghts(tmp_path):
     """./tbags shear --engine liggghts end to end on the tiny bag: LAMMPS's bag and fill, the
     shear in LIGGGHTS, shear.csv in the launcher's columns, the S-u figure."""
@@ -75,4 +102,5 @@ def test_launcher_engine_liggghts(tmp_path):
     assert r.returncode == 0 and "shear (LIGGGHTS)" in r.stdout and "SHEARED: u 0.299" in r.stdout
     d = read_csv(out / "shear.csv")
     assert len(d) == 4 and d["u_mm"][0] == 0 and abs(d["u_mm"][-1] - 0.25) < 1e-3
+    assert "S_max_N" in d.dtype.names and not (out / "shear.steps.txt").exists()
     assert (out / "figures" / "shear.png").is_file()

@@ -64,13 +64,40 @@ def test_bad_arguments_say_what_is_wrong(argv, message):
         parse(argv)
 
 
+def liggghts_outputs(folder, trace_rows):
+    """fix ave/time's means of inputs/liggghts/in.shear (two rows of 2 steps), its u = 0 row and
+    a per-step trace (step w S F_v z_plate broken, SI)"""
+    (folder / "m.txt").write_text("# Time-averaged data for fix means\n# TimeStep v_t v_u v_w v_S v_F v_zp\n"
+                                  "2 0.0033 5e-05 -0.00138 29.95 43.19 0.02245\n"
+                                  "4 0.0100 0.00015 -0.00137 43.41 43.18 0.02246\n")
+    (folder / "s.txt").write_text("0 0.0 0 -0.00139 19.9 43.18 0.02244\n")
+    (folder / "t.txt").write_text("".join(" ".join(str(x) for x in r) + "\n" for r in trace_rows))
+
+
+TRACE = [(1, -0.00139, 28.0, 43.0, 0.02244, 0), (2, -0.00137, 31.9, 43.38, 0.02246, 0),
+         (3, -0.00138, 40.0, 43.1, 0.02245, 1), (4, -0.00136, 46.82, 43.26, 0.02247, 2)]
+
+
 def test_liggghts_means_become_the_shear_csv(tmp_path):
-    """fix ave/time's output of inputs/liggghts/in.shear (SI) as the CSV's columns (mm, N)."""
-    (tmp_path / "m.txt").write_text("# Time-averaged data for fix means\n# TimeStep v_t v_u v_w v_S v_F v_zp\n"
-                                    "4444 0.0033 5e-05 -0.00138 29.95 43.19 0.02245\n"
-                                    "8888 0.0100 0.00015 -0.00137 43.41 43.18 0.02246\n")
-    (tmp_path / "s.txt").write_text("0 0.0 0 -0.00139 19.9 43.18 0.02244\n")
-    means_to_csv(tmp_path / "m.txt", tmp_path / "shear.csv", tmp_path / "s.txt")
+    """The LIGGGHTS run's outputs (SI) as inputs/in.shear's CSV (mm, N): the means as they are,
+    min and max over each row's steps and the broken bonds at its last step from the trace."""
+    liggghts_outputs(tmp_path, TRACE)
+    means_to_csv(tmp_path / "m.txt", tmp_path / "shear.csv", tmp_path / "s.txt", tmp_path / "t.txt")
     d = read_csv(tmp_path / "shear.csv")
     assert list(d["u_mm"]) == [0, 0.05, 0.15] and list(d["w_mm"]) == [-1.39, -1.38, -1.37]
-    assert list(d["S_N"]) == [19.9, 29.95, 43.41] and list(d["steps"]) == [1, 4444, 4444]
+    assert list(d["S_N"]) == [19.9, 29.95, 43.41] and list(d["steps"]) == [1, 2, 2]
+    assert list(d["S_min_N"]) == [19.9, 28.0, 40.0] and list(d["S_max_N"]) == [19.9, 31.9, 46.82]
+    assert list(d["w_min_mm"]) == [-1.39, -1.39, -1.38] and list(d["w_max_mm"]) == [-1.39, -1.37, -1.36]
+    assert list(d["Fv_min_N"]) == [43.18, 43.0, 43.1] and list(d["Fv_max_N"]) == [43.18, 43.38, 43.26]
+    assert list(d["zplate_min_mm"]) == [22.44, 22.44, 22.45] and list(d["zplate_max_mm"]) == [22.44, 22.46, 22.47]
+    assert list(d["broken_bonds"]) == [0, 0, 2]
+    # the same columns as LAMMPS's in.shear
+    lammps_header = [line for line in (ROOT / "inputs" / "in.shear").read_text().splitlines()
+                     if "print time_s," in line][0].split("print ")[1].split()[0]
+    assert (tmp_path / "shear.csv").read_text().splitlines()[0] == lammps_header
+
+
+def test_liggghts_trace_must_cover_every_step(tmp_path):
+    liggghts_outputs(tmp_path, TRACE[:2] + TRACE[3:])
+    with pytest.raises(LaunchError, match="has 1 of the 2 steps 3-4"):
+        means_to_csv(tmp_path / "m.txt", tmp_path / "shear.csv", tmp_path / "s.txt", tmp_path / "t.txt")
