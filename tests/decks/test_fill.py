@@ -23,6 +23,7 @@ def test_fill_small_bag(tmp_path):
     inner = 9 * 9 * 3 * 0.005 ** 3
     assert grains == round(inner / (1.68 * np.mean(np.pi / 6 * SIZES ** 3)))
     assert abs(e - 0.68) < 0.01 and "ERROR" not in res.output and "not settled" not in res.output
+    assert "SETTLED: after" in res.output
     # sizes in the data file: equal number fractions (within one grain)
     data = (tmp_path / "fill.data").read_text()
     atoms = data[data.index("Atoms"):data.index("Velocities")].splitlines()[2:]
@@ -84,7 +85,27 @@ def sand_rows(path):
     return sand[:, [0, 3, 5, 6, 7]]
 
 
-SMALL = {"nx": 7, "ny": 7, "nz": 5, "nsettle": 2000, "ke_tol": 1.0}
+SMALL = {"nx": 7, "ny": 7, "nz": 5, "nsettle": 2000, "ke_tol": 1.0, "vtol": 1.0}
+
+
+def test_settles_until_the_top_face_rests(tmp_path):
+    """The settling runs nsettle steps, then chunks until the kinetic energy and the top face's
+    mean sinking speed (over the last chunk) are below their limits, up to settle_max; a limit
+    the bag cannot meet runs to settle_max with progress lines and a warning, a loose one stops
+    at nsettle."""
+    lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path, variables=SMALL).check()
+    tight = dict(SMALL, tbags=lmprun.ROOT, settle_chunk=1000, settle_max=5000, vtol=1e-12)
+    out = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=tight).check().output
+    progress = [l for l in out.splitlines() if l.startswith("SETTLING:")]
+    print("\n".join(progress))
+    assert [int(l.split()[1]) for l in progress] == [2000, 3000, 4000, 5000]
+    assert "100 %" in progress[-1] and "WARNING: in.fill: not settled after 5000 steps" in out
+    speeds = [float(l.split("sinking at ")[1].split()[0]) for l in progress]
+    assert all(abs(v) < 1000 for v in speeds) and len(set(speeds)) == 4    # measured, mm/s
+    out = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(tight, vtol=1.0)).check().output
+    assert "SETTLED: after 2000 steps" in out and out.count("SETTLING:") == 1 and "not settled" not in out
+    bad = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(tight, nsettle=2500))
+    assert bad.returncode != 0 and "nsettle must be >= 1, a multiple of settle_chunk" in bad.output
 
 
 def test_seed_changes_the_packing(tmp_path):
