@@ -108,20 +108,22 @@ def means_to_csv(means, csv, start=None, steps=None):
         return [[float(x) for x in line.split()] for line in Path(path).read_text().splitlines()
                 if line.strip() and not line.startswith("#")]
 
-    def mm(x):
-        return x * 1e3
+    def row(t, u, w, S, F, broken, z, nsteps, lows, highs):
+        """a CSV row: means (SI in, mm and N out), then min and max of w, S, F_v and z_plate"""
+        scale = (1e3, 1.0, 1.0, 1e3)
+        ext = [x * k for lo, hi, k in zip(lows, highs, scale) for x in (lo, hi)]
+        return ",".join(["%.7f" % t] + ["%.4f" % x for x in (u * 1e3, w * 1e3, S, F)]
+                        + ["%d" % broken, "%.4f" % (z * 1e3), "%d" % nsteps] + ["%.4f" % x for x in ext])
 
     out = [SHEAR_CSV, "# LIGGGHTS (inputs/liggghts/in.shear): means over each row's interval of steps "
            "(min, max beside); broken bonds since the compressed state"]
     if start and Path(start).is_file():
         t, u, w, S, F, z = table(start)[0][1:7]
-        out.append(",".join(["%.7f" % t] + ["%.4f" % x for x in (mm(u), mm(w), S, F)] + ["0", "%.4f" % mm(z), "1"]
-                            + ["%.4f" % x for x in (mm(w), mm(w), S, S, F, F, mm(z), mm(z))]))
+        out.append(row(t, u, w, S, F, 0, z, 1, (w, S, F, z), (w, S, F, z)))
     trace = table(steps)
-    k = 0
-    last = 0
+    k = last = 0
     for step, t, u, w, S, F, z in (r[:7] for r in table(means)):
-        chunk = []
+        chunk = []    # the trace's rows of the steps last+1 .. step
         while k < len(trace) and trace[k][0] <= step:
             if trace[k][0] > last:
                 chunk.append(trace[k])
@@ -129,13 +131,8 @@ def means_to_csv(means, csv, start=None, steps=None):
         if len(chunk) != step - last:
             raise LaunchError("shear: %s has %d of the %d steps %d-%d of a row of %s" %
                               (steps, len(chunk), step - last, last + 1, step, means))
-        cols = list(zip(*chunk))
-        ext = []
-        for c, scale in ((1, 1e3), (2, 1.0), (3, 1.0), (4, 1e3)):
-            ext += [min(cols[c]) * scale, max(cols[c]) * scale]
-        out.append(",".join(["%.7f" % t] + ["%.4f" % x for x in (mm(u), mm(w), S, F)]
-                            + ["%d" % chunk[-1][5], "%.4f" % mm(z), "%d" % (step - last)]
-                            + ["%.4f" % x for x in ext]))
+        cols = list(zip(*chunk))[1:5]    # w S F_v z_plate
+        out.append(row(t, u, w, S, F, chunk[-1][5], z, step - last, map(min, cols), map(max, cols)))
         last = step
     Path(csv).write_text("\n".join(out) + "\n")
 
