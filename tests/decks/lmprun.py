@@ -47,15 +47,20 @@ def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, ti
                       plugin=plugin_path, engine=engine)
 
 
-def read_dump(path):
-    """Read a sorted 'write_dump ... custom' text file: returns (columns, array)."""
+def read_dump(path, last=False):
+    """A 'dump/write_dump ... custom' text file's first (or last) snapshot: (columns, array)."""
     lines = Path(path).read_text().splitlines()
-    for k, line in enumerate(lines):
-        if line.startswith("ITEM: ATOMS"):
-            cols = line.split()[2:]
-            data = np.array([[float(x) for x in l.split()] for l in lines[k + 1:] if l.strip()])
-            return cols, data
-    raise ValueError("no ITEM: ATOMS in %s" % path)
+    heads = [k for k, line in enumerate(lines) if line.startswith("ITEM: ATOMS")]
+    if not heads:
+        raise ValueError("no ITEM: ATOMS in %s" % path)
+    k = heads[-1] if last else heads[0]
+    rows = []
+    for line in lines[k + 1:]:
+        if line.startswith("ITEM:"):
+            break
+        if line.strip():
+            rows.append([float(x) for x in line.split()])
+    return lines[k].split()[2:], np.array(rows)
 
 
 def column(path, name):

@@ -18,11 +18,8 @@ FIELDS = "id x y z fx fy fz tqx tqy tqz"
 
 def last_dump(path):
     """The last snapshot of a dump custom file, sorted by id: {column: array}."""
-    lines = path.read_text().splitlines()
-    k = max(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
-    cols = lines[k].split()[2:]
-    data = np.array([[float(x) for x in l.split()] for l in lines[k + 1:] if l.strip()])
-    data = data[np.argsort(data[:, 0])]
+    cols, data = lmprun.read_dump(path, last=True)
+    data = data[np.argsort(data[:, cols.index("id")])]
     return {c: data[:, j] for j, c in enumerate(cols)}
 
 
