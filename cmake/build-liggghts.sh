@@ -15,12 +15,14 @@
 #   src-plugin/yarn_table.* the yarn bond's table reader and bond_coeff parser (engine-neutral)
 #   src-plugin/parse_words.h the word parsing both use
 # Our laws are C++17, so LIGGGHTS builds with -std=c++17 (its own flags otherwise; all of its
-# sources compile so). The pinned tarball gets four changes (Debian's own patch set is missing from
+# sources compile so). The pinned tarball gets five changes (Debian's own patch set is missing from
 # the archive; ours is in cmake/liggghts-patches/):
 #   01  utils.h int_to_string: a cast of an rvalue stream, which GCC 12 rejects
 #   02  finish.cpp: a pointer ordered against 0, which GCC 12 rejects
 #   03  error_special.h: the "tip of the day" added to one error in five pointed at a destroyed
 #       string (it printed bytes of freed memory after the error message)
+#   04  lattice.cpp: Domain's constructor makes a 'lattice none 1.0' before Force exists, and that
+#       called a member of the unset Force pointer (the UBSan build stopped there at start-up)
 #   and dump_mesh_vtk.{cpp,h} left out (they include VTK's headers unguarded; VTK is not used)
 # A change of our sources makes a new directory; ccache (base dir = the tree) keeps that rebuild
 # to the files that changed. The two newest trees are kept.
