@@ -97,7 +97,7 @@ SHEAR_CSV = ("time_s,u_mm,w_mm,S_N,Fv_N,broken_bonds,zplate_mm,steps,w_min_mm,w_
              "Fv_min_N,Fv_max_N,zplate_min_mm,zplate_max_mm")
 
 
-def means_to_csv(means, csv, start=None, steps=None):
+def means_to_csv(means, csv, start, steps):
     """inputs/liggghts/in.shear's outputs (SI) as the shear CSV of inputs/in.shear (mm, N):
     fix ave/time's means (step t u w S F_v z_plate), after the row at u = 0 of `start`
     (shear.start.txt: one step, as LAMMPS's first row); the min and max of w, S, F_v and z_plate
@@ -117,9 +117,8 @@ def means_to_csv(means, csv, start=None, steps=None):
 
     out = [SHEAR_CSV, "# LIGGGHTS (inputs/liggghts/in.shear): means over each row's interval of steps "
            "(min, max beside); broken bonds since the compressed state"]
-    if start and Path(start).is_file():
-        t, u, w, S, F, z = table(start)[0][1:7]
-        out.append(row(t, u, w, S, F, 0, z, 1, (w, S, F, z), (w, S, F, z)))
+    t, u, w, S, F, z = table(start)[0][1:7]
+    out.append(row(t, u, w, S, F, 0, z, 1, (w, S, F, z), (w, S, F, z)))
     trace = table(steps)
     k = last = 0
     for step, t, u, w, S, F, z in (r[:7] for r in table(means)):

@@ -42,7 +42,7 @@ def runs(tmp_path_factory):
     convert(wd / "fill.data", lig / "fill.liggghts.data")
     lmprun.run(lmprun.INPUTS / "liggghts" / "in.shear", lig, engine="liggghts", timeout=3600,
                variables=dict(variables, fill="fill.liggghts.data")).check("liggghts")
-    means_to_csv(lig / "shear.means.txt", lig / "shear.csv", lig / "shear.start.txt")
+    means_to_csv(lig / "shear.means.txt", lig / "shear.csv", lig / "shear.start.txt", lig / "shear.steps.txt")
     return read_csv(lmp / "shear.csv"), read_csv(lig / "shear.csv")
 
 
