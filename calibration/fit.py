@@ -9,6 +9,7 @@ Resumable: every finished run is cached in the work directory (evaluations.json,
 
   ./tbags calibrate                       # paper's parameters + search (defaults below)
   ./tbags calibrate --budget 1            # the paper's parameters only
+  ./tbags calibrate --study               # the fitted sand on other seeds, frictions, E, void ratios
   ./tbags calibrate --help
 
 Needs TBAGS_LMP (path of lmp) and LAMMPS_PLUGIN_PATH (directory of tbagsplugin.so); the launcher
@@ -27,6 +28,7 @@ from tbagscal.misfit import load_data, misfit_one  # noqa: E402,F401 (misfit_one
 from tbagscal.report import SAND_INCLUDE, rewrite_sand_include, write_report  # noqa: E402
 from tbagscal.runs import lmp_command  # noqa: E402
 from tbagscal.search import search  # noqa: E402
+from tbagscal.study import run_study  # noqa: E402
 
 
 # ---------------------------------------------------------------------------------------------
@@ -57,6 +59,9 @@ def parse_args(argv):
     p.add_argument("--strain", type=float, default=0.20, help="final axial strain")
     p.add_argument("--dt", type=float, default=2e-6, help="time step (s)")
     p.add_argument("--seed", type=int, default=7331, help="insertion seed of the samples")
+    p.add_argument("--seeds", type=int, default=1,
+                   help="samples per pressure (seeds SEED, SEED+1, ...): each misfit is that of "
+                        "their mean curve, each peak ratio their mean and standard deviation")
     p.add_argument("--jobs", type=int, default=max(1, (os.cpu_count() or 2) // 2),
                    help="decks run in parallel (1 rank each)")
     p.add_argument("--data", default=str(HERE / "data"),
@@ -67,6 +72,10 @@ def parse_args(argv):
     p.add_argument("--no-figure", action="store_true", help="skip the figure")
     p.add_argument("--sand-include", action="store_true",
                    help="only rewrite OUT/sand_calibrated.lmp from OUT/runs.csv (no runs)")
+    p.add_argument("--study", action="store_true",
+                   help="instead of the search: the contraction study of the fitted sand (the "
+                        "best row of OUT/runs.csv on other seeds, frictions, E and void ratios), "
+                        "written to OUT/contraction-study.md, .csv, .png")
     a = p.parse_args(argv)
 
     def check(name, value, opt):
@@ -105,6 +114,8 @@ def parse_args(argv):
         setattr(a, name, vals)
     if a.budget < 1:
         p.error("--budget %d: at least 1 (the start point)" % a.budget)
+    if not 1 <= a.seeds <= 20:
+        p.error("--seeds %d: between 1 and 20 samples per pressure" % a.seeds)
     if a.jobs < 1:
         p.error("--jobs %d: at least 1" % a.jobs)
     if not 1e-8 <= a.dt <= 1e-4:
@@ -127,6 +138,10 @@ def main(argv):
         lmp_command()
         data = load_data(a.data, a.pressures)
         cal = Calibration(a)
+        if a.study:
+            run_study(cal, data, a.out)
+            print("fit.py: study written to %s" % (Path(a.out) / "contraction-study.md"), flush=True)
+            return 0
         rows = search(cal, data)
         best = write_report(cal, data, rows, a.out)
         print("fit.py: %d evaluations; best mu %.4g mur %.4g E %.3g misfit %.4f (start %.4f); report %s"

@@ -8,37 +8,49 @@ from .runs import Cache, RESTART_FORMAT, deck_hash, run_deck, summary
 
 
 class Calibration:
-    def __init__(self, a):
+    def __init__(self, a, share=None):
+        """share: another Calibration in the same work directory whose caches and locks this one
+        uses (variants of the options, e.g. another seed, run side by side)."""
         self.a = a
         self.work = Path(a.workdir)
-        self.prep_cache = Cache(self.work / "prep.json")
-        self.eval_cache = Cache(self.work / "evaluations.json")
-        self.prep_locks = {}
-        self.lock = threading.Lock()
+        if share is None:
+            self.prep_cache = Cache(self.work / "prep.json")
+            self.eval_cache = Cache(self.work / "evaluations.json")
+            self.prep_locks = {}
+            self.lock = threading.Lock()
+        else:
+            self.prep_cache, self.eval_cache = share.prep_cache, share.eval_cache
+            self.prep_locks, self.lock = share.prep_locks, share.lock
 
     def cell_vars(self):
         a = self.a
         return {"W": fmt(a.width), "H": fmt(a.height), "dt": fmt(a.dt)}
 
     # ---- samples ------------------------------------------------------------------------
-    def prep_key(self, p, E):
+    def seeds(self):
+        """The samples per pressure: --seeds of them from --seed on."""
+        return list(range(self.a.seed, self.a.seed + getattr(self.a, "seeds", 1)))
+
+    def prep_key(self, p, E, seed=None):
         a = self.a
         return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s_deck%s_r%d" % (
-            fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width), fmt(a.height), a.seed, fmt(a.dt),
+            fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width), fmt(a.height),
+            a.seed if seed is None else seed, fmt(a.dt),
             deck_hash("in.triax_prep", "cell.inc"), RESTART_FORMAT)
 
-    def sample(self, p, E):
+    def sample(self, p, E, seed=None):
         """Restart file of the sample at sigma3 = p MPa (void ratio within tolerance)."""
-        key = self.prep_key(p, E)
+        seed = self.a.seed if seed is None else seed
+        key = self.prep_key(p, E, seed)
         with self.lock:
             lk = self.prep_locks.setdefault(key, threading.Lock())
         with lk:
             hit = self.prep_cache.get(key)
             if hit and Path(hit["restart"]).is_file():
                 return hit
-            return self._prepare(p, E, key)
+            return self._prepare(p, E, key, seed)
 
-    def _prepare(self, p, E, key):
+    def _prepare(self, p, E, key, seed):
         a = self.a
         target, tol = a.void_ratio, a.e_tol
         tries = []
@@ -47,10 +59,10 @@ class Calibration:
             d = self.work / "prep" / key / ("mu%s" % fmt(mu))
             out, secs = run_deck("in.triax_prep", d, dict(
                 self.cell_vars(), sigma3=fmt(p * 1e6), E=fmt(E), mu_prep=fmt(mu), e0=fmt(target),
-                seed=a.seed, out="prep.restart"))
+                seed=seed, out="prep.restart"))
             e = summary(d, "prep")["void_ratio"]
             tries.append((mu, e))
-            print("fit.py: sample %g MPa: mu_prep %.4f -> void ratio %.4f (%.0f s)" % (p, mu, e, secs),
+            print("fit.py: sample %g MPa (seed %d): mu_prep %.4f -> void ratio %.4f (%.0f s)" % (p, seed, mu, e, secs),
                   flush=True)
             if abs(e - target) <= tol:
                 rec = {"restart": str(d / "prep.restart"), "mu_prep": mu, "e": e, "tries": tries,
@@ -83,18 +95,18 @@ class Calibration:
              % (target, tol, p, len(tries), best[1], best[0]))
 
     # ---- shear runs ---------------------------------------------------------------------
-    def run_key(self, prm, p):
+    def run_key(self, prm, p, seed=None):
         a = self.a
-        return "%s_mu%s_mur%s_I%s_strain%s_deck%s" % (self.prep_key(p, prm["E"]), fmt(prm["mu"]),
+        return "%s_mu%s_mur%s_I%s_strain%s_deck%s" % (self.prep_key(p, prm["E"], seed), fmt(prm["mu"]),
                                                       fmt(prm["mur"]), fmt(a.inertial), fmt(a.strain),
                                                       deck_hash("in.triax", "cell.inc"))
 
-    def shear(self, prm, p):
-        key = self.run_key(prm, p)
+    def shear(self, prm, p, seed=None):
+        key = self.run_key(prm, p, seed)
         hit = self.eval_cache.get(key)
         if hit and Path(hit["csv"]).is_file():
             return hit
-        s = self.sample(p, prm["E"])
+        s = self.sample(p, prm["E"], seed)
         d = self.work / "runs" / key
         out, secs = run_deck("in.triax", d, dict(
             self.cell_vars(), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
@@ -108,10 +120,11 @@ class Calibration:
                "rate": shear["rate_per_s"],
                "mu_prep": s["mu_prep"]}
         self.eval_cache.put(key, rec)
-        print("fit.py: run mu %.4g mur %.4g E %.3g at %g MPa: %.0f s" % (prm["mu"], prm["mur"], prm["E"], p, secs),
-              flush=True)
+        print("fit.py: run mu %.4g mur %.4g E %.3g at %g MPa (seed %d): %.0f s"
+              % (prm["mu"], prm["mur"], prm["E"], p, self.a.seed if seed is None else seed, secs), flush=True)
         return rec
 
     def evaluate(self, prm, pool):
-        futs = {p: pool.submit(self.shear, prm, p) for p in self.a.pressures}
-        return {p: f.result() for p, f in futs.items()}
+        """{sigma3: [the run of each seed]} of a parameter set."""
+        futs = {(p, s): pool.submit(self.shear, prm, p, s) for p in self.a.pressures for s in self.seeds()}
+        return {p: [futs[(p, s)].result() for s in self.seeds()] for p in self.a.pressures}

@@ -65,24 +65,43 @@ def misfit_one(curve, data):
     return jr + W_VOL * jv, jr, jv
 
 
+def mean_curve(curves):
+    """The samples' mean curve: every column interpolated at the axial strains of the shortest
+    curve, then averaged (one curve: itself)."""
+    if len(curves) == 1:
+        return curves[0]
+    grid = min(curves, key=lambda c: c["eps_a_pct"][-1])["eps_a_pct"]
+    return {n: (grid if n == "eps_a_pct" else
+                np.mean([np.interp(grid, c["eps_a_pct"], c[n]) for c in curves], axis=0))
+            for n in curves[0]}
+
+
 def summarise(prm, runs, data):
+    """One row of the evaluations' table: the misfit of the seeds' mean curve at each pressure,
+    the seeds' mean peak ratio and its standard deviation, the samples' void ratio and the walls' errors."""
     row = dict(prm)
     tot = []
-    for p, rec in runs.items():
-        c = read_curve(rec["csv"])
+    for p, recs in runs.items():
+        each = [read_curve(rec["csv"]) for rec in recs]
+        c = mean_curve(each)
         j, jr, jv = misfit_one(c, data[p][1])
         tot.append(j)
         ev = c["eps_v_pct"]
         kmax = int(np.argmax(ev))
-        lateral = np.column_stack([c[n] for n in ("sxlo_Pa", "sxhi_Pa", "sylo_Pa", "syhi_Pa")])[1:]
-        lat_err = np.abs(lateral / (p * 1e6) - 1)
+        names = ("sxlo_Pa", "sxhi_Pa", "sylo_Pa", "syhi_Pa")
+        lat_err = np.concatenate([np.abs(np.column_stack([e[n] for n in names])[1:] / (p * 1e6) - 1).ravel()
+                                  for e in each])
+        peaks = np.array([e["ratio"].max() for e in each])
         row.update({
             "J_%g" % p: j, "Jratio_%g" % p: jr, "Jvol_%g" % p: jv,
-            "peak_sim_%g" % p: float(c["ratio"].max()),
+            "peak_sim_%g" % p: float(peaks.mean()),
+            "peak_sd_%g" % p: float(peaks.std(ddof=1)) if len(peaks) > 1 else 0.0,
             "peak_data_%g" % p: float(data[p][1][:, 1].max()),
             "contract_dilate_%g" % p: bool(ev[kmax] > 0 and ev[-1] < ev[kmax] - 0.1),
-            "e0_%g" % p: rec["e0"], "I_%g" % p: rec["inertial"],
-            "wallerr_%g" % p: rec["wall_err_max"], "seconds_%g" % p: rec["seconds"],
+            "e0_%g" % p: float(np.mean([r["e0"] for r in recs])),
+            "I_%g" % p: float(np.mean([r["inertial"] for r in recs])),
+            "wallerr_%g" % p: max(r["wall_err_max"] for r in recs),
+            "seconds_%g" % p: sum(r["seconds"] for r in recs),
             "shearwall_max_%g" % p: float(lat_err.max()), "shearwall_mean_%g" % p: float(lat_err.mean()),
             "Z_end_%g" % p: float(c["Z"][-1])})
     row["J"] = float(np.mean(tot))

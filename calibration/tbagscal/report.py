@@ -6,9 +6,11 @@ import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
+
 from .common import PAPER, W_VOL, fail
 from .figure import figure
-from .misfit import read_curve
+from .misfit import mean_curve, read_curve
 
 
 def write_report(cal, data, rows, out_dir):
@@ -20,7 +22,7 @@ def write_report(cal, data, rows, out_dir):
         best = min(rows, key=lambda r: r["J"])
         ps = a.pressures
         cols = ["n", "mu", "mur", "E", "J"] + [c % p for p in ps for c in
-                                                ("J_%g", "Jratio_%g", "Jvol_%g", "peak_sim_%g", "peak_data_%g",
+                                                ("J_%g", "Jratio_%g", "Jvol_%g", "peak_sim_%g", "peak_sd_%g", "peak_data_%g",
                                                  "contract_dilate_%g", "e0_%g", "I_%g", "wallerr_%g", "shearwall_mean_%g",
                                                  "shearwall_max_%g", "Z_end_%g", "seconds_%g")]
         with open(tmp / "runs.csv", "w", newline="") as fh:
@@ -31,9 +33,14 @@ def write_report(cal, data, rows, out_dir):
         curves = {}
         for tag, r in (("start", paper), ("best", best)):
             for p in ps:
-                rec = cal.eval_cache.get(cal.run_key(r, p))
-                shutil.copy(rec["csv"], tmp / ("curve_%s_%gMPa.csv" % (tag, p)))
-                curves[(tag, p)] = read_curve(rec["csv"])
+                recs = [cal.eval_cache.get(cal.run_key(r, p, s)) for s in cal.seeds()]
+                dest = tmp / ("curve_%s_%gMPa.csv" % (tag, p))
+                if len(recs) == 1:
+                    shutil.copy(recs[0]["csv"], dest)
+                    curves[(tag, p)] = read_curve(recs[0]["csv"])
+                else:
+                    curves[(tag, p)] = mean_curve([read_curve(x["csv"]) for x in recs])
+                    write_curve(dest, curves[(tag, p)], "mean of seeds %s" % ", ".join(map(str, cal.seeds())))
         L = []
         L.append("# Triaxial calibration report (calibration/fit.py)\n")
         L.append("Generated %s by `fit.py %s`.\n" % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
@@ -43,14 +50,19 @@ def write_report(cal, data, rows, out_dir):
                  "data eps_v range), at the data's axial strains, averaged over the pressures.\n"
                  % (a.width * 1e3, a.width * 1e3, a.height * 1e3, a.void_ratio, a.e_tol, a.inertial, a.dt,
                     a.strain * 100, W_VOL))
+        if len(cal.seeds()) > 1:
+            L.append("Samples per pressure: %d (seeds %s). Each misfit is that of the samples' mean curve; "
+                     "a peak ratio is the samples' mean +- their standard deviation.\n"
+                     % (len(cal.seeds()), ", ".join(map(str, cal.seeds()))))
         for p in ps:
             if data[p][2]:
                 L.append("- %s\n" % data[p][2])
         for E in sorted({r["E"] for r in (paper, best)}):
             L.append("Samples (E = %.3g GPa, N grains as in in.triax_prep): %s.\n" % (E / 1e9, "; ".join(
-                "%g MPa: void ratio %.4f at mu_prep %.4f (%d preparation%s)" % (
-                    p, pr["e"], pr["mu_prep"], len(pr["tries"]), "s" if len(pr["tries"]) > 1 else "")
-                for p in ps for pr in [cal.prep_cache.get(cal.prep_key(p, E))] if pr)))
+                "%g MPa%s: void ratio %.4f at mu_prep %.4f (%d preparation%s)" % (
+                    p, (" seed %d" % s) if len(cal.seeds()) > 1 else "", pr["e"], pr["mu_prep"],
+                    len(pr["tries"]), "s" if len(pr["tries"]) > 1 else "")
+                for p in ps for s in cal.seeds() for pr in [cal.prep_cache.get(cal.prep_key(p, E, s))] if pr)))
         L.append("\n## Start (paper) and best parameters\n")
         L.append("| set | mu | mu_r | E (GPa) | J | " + " | ".join("J %g MPa" % p for p in ps) + " | "
                  + " | ".join("peak ratio %g MPa sim/data" % p for p in ps) + " | contracts then dilates |")
@@ -60,8 +72,9 @@ def write_report(cal, data, rows, out_dir):
             L.append("| %s | %.4g | %.4g | %.3g | %.4f | %s | %s | %s |" % (
                 tag, r["mu"], r["mur"], r["E"] / 1e9, r["J"],
                 " | ".join("%.4f" % r["J_%g" % p] for p in ps),
-                " | ".join("%.3f / %.3f (%+.1f %%)" % (r["peak_sim_%g" % p], r["peak_data_%g" % p],
-                                                      100 * (r["peak_sim_%g" % p] / r["peak_data_%g" % p] - 1))
+                " | ".join("%.3f%s / %.3f (%+.1f %%)" % (
+                    r["peak_sim_%g" % p], (" +- %.3f" % r["peak_sd_%g" % p]) if len(cal.seeds()) > 1 else "",
+                    r["peak_data_%g" % p], 100 * (r["peak_sim_%g" % p] / r["peak_data_%g" % p] - 1))
                            for p in ps),
                 ", ".join("yes" if r["contract_dilate_%g" % p] else "no" for p in ps)))
         L.append("\n## All evaluations\n")
@@ -90,6 +103,16 @@ def write_report(cal, data, rows, out_dir):
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return best
+
+
+def write_curve(path, curve, note):
+    """A curve (dict of columns) as the deck's CSV layout, with a comment line."""
+    names = list(curve)
+    rows = np.column_stack([curve[n] for n in names])
+    with open(path, "w") as fh:
+        fh.write("# %s\n%s\n" % (note, ",".join(names)))
+        for r in rows:
+            fh.write(",".join("%.6g" % x for x in r) + "\n")
 
 
 SAND_INCLUDE = "sand_calibrated.lmp"

@@ -107,6 +107,49 @@ def test_fit_runs_end_to_end_on_a_tiny_sample(tmp_path):
     assert again.returncode == 0 and "run mu" not in again.stdout and "sample" not in again.stdout
 
 
+def test_mean_curve_of_samples():
+    import importlib
+    sys.path.insert(0, str(CAL))
+    misfit = importlib.import_module("tbagscal.misfit")
+    a = {"eps_a_pct": np.array([0.0, 1.0, 2.0, 3.0]), "ratio": np.array([1.0, 2.0, 3.0, 4.0])}
+    b = {"eps_a_pct": np.array([0.0, 0.5, 1.0, 1.5, 2.0]), "ratio": np.array([1.0, 1.0, 1.0, 1.0, 5.0])}
+    m = misfit.mean_curve([a, b])
+    assert list(m["eps_a_pct"]) == [0.0, 0.5, 1.0, 1.5, 2.0]     # the shortest curve's strains
+    assert list(m["ratio"]) == [1.0, 1.25, 1.5, 1.75, 4.0]
+    assert misfit.mean_curve([a]) is a
+
+
+def test_fit_with_several_samples_per_pressure(tmp_path):
+    """--seeds 2: two packings per pressure (different peaks), the misfit and the report's curve
+    are those of their mean curve, and the peak's spread is reported."""
+    res = run_fit(TINY_ARGS + ["--pressures", "0.2", "--budget", "1", "--mu", "0.5", "--mur", "0.1",
+                               "--seeds", "2", "--no-figure"], tmp_path)
+    assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-2000:]
+    assert "(seed 7331)" in res.stdout and "(seed 7332)" in res.stdout
+    runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
+    assert len(runs) == 2
+    fit = load_fit()
+    import importlib
+    misfit = importlib.import_module("tbagscal.misfit")
+    each = [misfit.read_curve(r["csv"]) for r in runs.values()]
+    assert not np.allclose(each[0]["ratio"][:5], each[1]["ratio"][:5])   # two packings
+    grid = min(each, key=lambda c: c["eps_a_pct"][-1])["eps_a_pct"]    # the mean, by hand
+    mean = {n: grid if n == "eps_a_pct" else 0.5 * (np.interp(grid, each[0]["eps_a_pct"], each[0][n])
+                                                    + np.interp(grid, each[1]["eps_a_pct"], each[1][n]))
+            for n in each[0]}
+    data = fit.load_data(CAL / "data", [0.2])[0.2][1]
+    import csv as csvmod
+    row = next(csvmod.DictReader(open(tmp_path / "report" / "runs.csv")))
+    assert float(row["J"]) == pytest.approx(misfit.misfit_one(mean, data)[0], rel=1e-5)
+    peaks = [c["ratio"].max() for c in each]
+    assert float(row["peak_sim_0.2"]) == pytest.approx(np.mean(peaks), rel=1e-5)
+    assert float(row["peak_sd_0.2"]) == pytest.approx(np.std(peaks, ddof=1), rel=1e-4)
+    assert float(row["peak_sd_0.2"]) > 0
+    written = misfit.read_curve(tmp_path / "report" / "curve_best_0.2MPa.csv")
+    assert np.allclose(written["ratio"], mean["ratio"], rtol=1e-5)
+    assert "Samples per pressure: 2 (seeds 7331, 7332)" in (tmp_path / "report" / "report.md").read_text()
+
+
 def test_fit_recovers_a_known_friction(tmp_path):
     """A synthetic target made by the deck itself (the tiny sample at 0.2 MPa with mu = 0.6,
     written as a data set with its manifest), then a fit of mu from 0.3 with 8 evaluations (grid
@@ -150,6 +193,7 @@ def no_report(tmp_path):
     (["--pressures", "0.2,-1"], "--pressures 0.2,-1.0: each confining stress must be in (0, 50] MPa"),
     (["--void-ratio", "2"], "--void-ratio 2: void ratio must be in"),
     (["--fit", "mu,k"], "--fit mu,k: choose among mu, mur, E"),
+    (["--seeds", "0"], "--seeds 0: between 1 and 20 samples per pressure"),
 ])
 def test_parameter_outside_its_range(tmp_path, args, message):
     res = run_fit(TINY_ARGS + args, tmp_path)
