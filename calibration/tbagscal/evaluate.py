@@ -1,9 +1,10 @@
 """The samples (one per confining stress, void ratio reached by the preparation friction) and the
 triaxial runs of a parameter set, each cached."""
+import math
 import threading
 from pathlib import Path
 
-from .common import PREP_MU_MAX, PREP_MU_START, PREP_SLOPE, fail, fmt
+from .common import PAPER, PREP_MU_MAX, PREP_MU_START, PREP_SLOPE, fail, fmt
 from .runs import Cache, RESTART_FORMAT, deck_hash, run_deck, summary
 
 
@@ -22,9 +23,14 @@ class Calibration:
             self.prep_cache, self.eval_cache = share.prep_cache, share.eval_cache
             self.prep_locks, self.lock = share.prep_locks, share.lock
 
-    def cell_vars(self):
+    def dt(self, E):
+        """--dt for grains up to the paper's E; for stiffer ones scaled by sqrt(E_paper / E), the
+        same fraction of the Rayleigh step (which falls as 1 / sqrt(E))."""
+        return self.a.dt * math.sqrt(min(1.0, PAPER["E"] / E))
+
+    def cell_vars(self, E):
         a = self.a
-        return {"W": fmt(a.width), "H": fmt(a.height), "dt": fmt(a.dt)}
+        return {"W": fmt(a.width), "H": fmt(a.height), "dt": fmt(self.dt(E))}
 
     # ---- samples ------------------------------------------------------------------------
     def seeds(self):
@@ -35,7 +41,7 @@ class Calibration:
         a = self.a
         return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s_deck%s_r%d" % (
             fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width), fmt(a.height),
-            a.seed if seed is None else seed, fmt(a.dt),
+            a.seed if seed is None else seed, fmt(self.dt(E)),
             deck_hash("in.triax_prep", "cell.inc"), RESTART_FORMAT)
 
     def sample(self, p, E, seed=None):
@@ -58,7 +64,7 @@ class Calibration:
         for k in range(6):
             d = self.work / "prep" / key / ("mu%s" % fmt(mu))
             out, secs = run_deck("in.triax_prep", d, dict(
-                self.cell_vars(), sigma3=fmt(p * 1e6), E=fmt(E), mu_prep=fmt(mu), e0=fmt(target),
+                self.cell_vars(E), sigma3=fmt(p * 1e6), E=fmt(E), mu_prep=fmt(mu), e0=fmt(target),
                 seed=seed, out="prep.restart"))
             e = summary(d, "prep")["void_ratio"]
             tries.append((mu, e))
@@ -109,7 +115,7 @@ class Calibration:
         s = self.sample(p, prm["E"], seed)
         d = self.work / "runs" / key
         out, secs = run_deck("in.triax", d, dict(
-            self.cell_vars(), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
+            self.cell_vars(prm["E"]), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
             mu=fmt(prm["mu"]), mur=fmt(prm["mur"]), inertial=fmt(self.a.inertial),
             strain=fmt(self.a.strain), csv="triax.csv"))
         cons, shear = summary(d, "consolidated"), summary(d, "shear")

@@ -45,7 +45,7 @@ def write_report(cal, data, rows, out_dir):
         L.append("# Triaxial calibration report (calibration/fit.py)\n")
         L.append("Generated %s by `fit.py %s`.\n" % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
                                                      " ".join(sys.argv[1:])))
-        L.append("Sample: %g x %g x %g mm, target void ratio %g +/- %g; inertial number %g; dt %g s; "
+        L.append("Sample: %g x %g x %g mm, target void ratio %g +/- %g; inertial number %g; dt %g s (times sqrt(1.8 GPa / E) for stiffer grains); "
                  "strain to %g %%; misfit J = RMS(ratio error / data peak ratio) + %g RMS(eps_v error / "
                  "data eps_v range), at the data's axial strains, averaged over the pressures.\n"
                  % (a.width * 1e3, a.width * 1e3, a.height * 1e3, a.void_ratio, a.e_tol, a.inertial, a.dt,

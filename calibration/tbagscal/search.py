@@ -1,5 +1,6 @@
 """The search over mu, mu_r (and E): a grid, then Nelder-Mead from its best points, within a budget."""
 import concurrent.futures as cf
+import math
 
 import numpy as np
 
@@ -44,16 +45,25 @@ def search(cal, data):
             from scipy.optimize import minimize
             best = min(rows, key=lambda r: r["J"])
             names = a.fit
-            scale = {"mu": 0.1, "mur": 0.05, "E": 0.5e9}
-            x0 = np.array([best[n] / scale[n] for n in names])
-            simplex = [x0] + [x0 + np.eye(len(names))[i] * (-1 if best[names[i]] / scale[names[i]] > 5 else 1)
-                              for i in range(len(names))]
+            # unit steps: 0.1 in mu, 0.05 in mu_r, a factor 10^0.15 = 1.41 in E (searched in log10 E:
+            # the grain stiffness matters by its ratio)
+            scale = {"mu": 0.1, "mur": 0.05, "E": 0.15}
+
+            def to_x(n, v):
+                return math.log10(v) / scale[n] if n == "E" else v / scale[n]
+
+            def from_x(n, x):
+                return float("%.3g" % 10 ** (x * scale[n])) if n == "E" else round(x * scale[n], 4)
+
+            x0 = np.array([to_x(n, best[n]) for n in names])
+            # first steps away from the range's upper end (mu, mu_r) and towards stiffer grains (E)
+            simplex = [x0] + [x0 + np.eye(len(names))[i] * (-1 if n != "E" and best[n] / scale[n] > 5 else 1)
+                              for i, n in enumerate(names)]
 
             def f(x):
-                prm = dict(best)
-                prm = {k: prm[k] for k in ("mu", "mur", "E")}
+                prm = {k: best[k] for k in ("mu", "mur", "E")}
                 for n, v in zip(names, x):
-                    prm[n] = round(float(v) * scale[n], 4 if n != "E" else -6)
+                    prm[n] = from_x(n, float(v))
                 return ev(prm)
 
             minimize(f, x0, method="Nelder-Mead",

@@ -4,14 +4,13 @@ a property of spheres at the data's void ratio, or of the fit?
 The fitted friction (the best row of OUT/runs.csv) is run again, at every pressure, on
 - other samples (seeds): the spread one sample carries;
 - other frictions (the search's grid): what the fit could trade;
-- stiffer grains (E, with the time step scaled to the same fraction of the Rayleigh step);
+- stiffer grains (E; the time step scaled to the same fraction of the Rayleigh step);
 - denser samples (void ratio, reached through the preparation friction),
 and the packing's own limits are probed (frictionless and mu_prep = 1 preparations), so that the
 void ratio can be read as a relative density of these spheres and compared with the sand's."""
 import argparse
 import concurrent.futures as cf
 import csv
-import math
 import shutil
 import sys
 import tempfile
@@ -72,8 +71,7 @@ def cases(base, best):
     fit = {"mu": best["mu"], "mur": best["mur"], "E": best["E"]}
     out = [Case("seed", "seed %d" % s, base, fit, seed=s) for s in SEEDS]
     for f in E_FACTORS:
-        out.append(Case("E", "E %.3g GPa" % (fit["E"] * f / 1e9), base, dict(fit, E=fit["E"] * f),
-                        dt=base.a.dt / math.sqrt(f)))
+        out.append(Case("E", "E %.3g GPa" % (fit["E"] * f / 1e9), base, dict(fit, E=fit["E"] * f)))
     out += [Case("void ratio", "e %.2f" % e, base, fit, void_ratio=e) for e in VOID_RATIOS]
     out += [Case("friction", "mu %.3g, mu_r %.3g" % (mu, mur), base, dict(fit, mu=mu, mur=mur))
             for mu, mur in FRICTIONS]
@@ -88,7 +86,7 @@ def probe_limits(cal, pressures, pool):
         if hit:
             return hit["e"]
         d = cal.work / "limits" / key
-        run_deck("in.triax_prep", d, dict(cal.cell_vars(), sigma3=fmt(p * 1e6), E=fmt(cal.a.E),
+        run_deck("in.triax_prep", d, dict(cal.cell_vars(cal.a.E), sigma3=fmt(p * 1e6), E=fmt(cal.a.E),
                                           mu_prep=fmt(mu), e0=fmt(cal.a.void_ratio), seed=cal.a.seed,
                                           out="prep.restart"))
         e = summary(d, "prep")["void_ratio"]

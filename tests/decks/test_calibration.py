@@ -119,6 +119,19 @@ def test_mean_curve_of_samples():
     assert misfit.mean_curve([a]) is a
 
 
+def test_time_step_follows_the_grain_stiffness(tmp_path):
+    """Stiffer grains than the paper's get dt sqrt(1.8 GPa / E) (the same fraction of the Rayleigh
+    step), softer ones --dt; the samples' cache key carries the step used."""
+    fit = load_fit()
+    a = fit.parse_args(["--dt", "2e-6", "--workdir", str(tmp_path)])
+    cal = fit.Calibration(a)
+    assert cal.dt(1.8e9) == pytest.approx(2e-6)
+    assert cal.dt(7.2e9) == pytest.approx(1e-6)
+    assert cal.dt(0.9e9) == pytest.approx(2e-6)
+    assert cal.cell_vars(18e9)["dt"] == "%.6g" % (2e-6 / 10 ** 0.5)
+    assert "_dt1e-06_" in cal.prep_key(0.2, 7.2e9)
+
+
 def test_fit_with_several_samples_per_pressure(tmp_path):
     """--seeds 2: two packings per pressure (different peaks), the misfit and the report's curve
     are those of their mean curve, and the peak's spread is reported."""
