@@ -13,22 +13,12 @@ if(NOT LAMMPS_SOURCE_DIR OR LAMMPS_SOURCE_DIR STREQUAL TBAGS_PINNED_SOURCE_DIR)
   # the pinned LAMMPS 4 Feb 2025 (Debian source package, sha256-verified), built once into a cache
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
     ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-lammps.sh ${CMAKE_CURRENT_SOURCE_DIR}/cmake/fetch-lammps.sh)
-  set(_args "")
-  if(TBAGS_SANITIZE)
-    set(_args --asan)
-  endif()
   message(STATUS "tbags: locating the pinned LAMMPS build (first time: fetch + build, 5-15 min)")
-  execute_process(COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cmake/build-lammps.sh ${_args}
-    OUTPUT_VARIABLE _out ERROR_VARIABLE _err RESULT_VARIABLE _rc)
-  if(NOT _rc EQUAL 0)
-    string(STRIP "${_err}" _err)
-    message(FATAL_ERROR "tbags: could not provide the pinned LAMMPS:\n${_err}\n"
-      "Use your own LAMMPS with -DLAMMPS_SOURCE_DIR=... -DLAMMPS_EXECUTABLE=... instead.")
-  endif()
-  string(REGEX MATCH "LAMMPS_SOURCE_DIR=([^\n]*)" _m "${_out}")
-  set(LAMMPS_SOURCE_DIR "${CMAKE_MATCH_1}" CACHE PATH "" FORCE)
-  string(REGEX MATCH "LAMMPS_EXECUTABLE=([^\n]*)" _m "${_out}")
-  set(LAMMPS_EXECUTABLE "${CMAKE_MATCH_1}" CACHE FILEPATH "" FORCE)
+  tbags_build_once(build-lammps.sh "the pinned LAMMPS"
+    "Use your own LAMMPS with -DLAMMPS_SOURCE_DIR=... -DLAMMPS_EXECUTABLE=... instead."
+    LAMMPS_SOURCE_DIR LAMMPS_EXECUTABLE)
+  set(LAMMPS_SOURCE_DIR "${TBAGS_LAMMPS_SOURCE_DIR}" CACHE PATH "" FORCE)
+  set(LAMMPS_EXECUTABLE "${TBAGS_LAMMPS_EXECUTABLE}" CACHE FILEPATH "" FORCE)
   set(TBAGS_PINNED_SOURCE_DIR "${LAMMPS_SOURCE_DIR}" CACHE INTERNAL "the pinned LAMMPS tree (not the user's)")
 endif()
 
