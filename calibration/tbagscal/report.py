@@ -16,6 +16,7 @@ from .misfit import mean_curve, read_curve
 def write_report(cal, data, rows, out_dir):
     a = cal.a
     out_dir = Path(out_dir)
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=".fit-", dir=out_dir.parent))
     try:
         paper = rows[0]

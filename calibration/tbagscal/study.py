@@ -188,6 +188,7 @@ def write_study(base, data, best, todo, limits, out_dir, seconds):
         L.append("| %g | %s | %s | %s | %s | %.2f, %.2f |" % (p, ms("peak"), ms("contraction"), ms("ev_10"),
                                                          ms("J"), meas[p]["peak"], meas[p]["contraction"]))
     L.append("\n(mean +- standard deviation over %d seeds [range])\n" % len(SEEDS))
+    Path(out_dir).parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=".study-", dir=Path(out_dir).parent))
     try:
         (tmp / "contraction-study.md").write_text("\n".join(L) + "\n")

@@ -134,9 +134,11 @@ def test_time_step_follows_the_grain_stiffness(tmp_path):
 
 def test_fit_with_several_samples_per_pressure(tmp_path):
     """--seeds 2: two packings per pressure (different peaks), the misfit and the report's curve
-    are those of their mean curve, and the peak's spread is reported."""
+    are those of their mean curve, and the peak's spread is reported (into a report directory
+    whose parent does not exist yet)."""
+    rep = tmp_path / "new" / "report"
     res = run_fit(TINY_ARGS + ["--pressures", "0.2", "--budget", "1", "--mu", "0.5", "--mur", "0.1",
-                               "--seeds", "2", "--no-figure"], tmp_path)
+                               "--seeds", "2", "--no-figure", "--out", str(rep)], tmp_path)
     assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-2000:]
     assert "(seed 7331)" in res.stdout and "(seed 7332)" in res.stdout
     runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
@@ -152,15 +154,15 @@ def test_fit_with_several_samples_per_pressure(tmp_path):
             for n in each[0]}
     data = fit.load_data(CAL / "data", [0.2])[0.2][1]
     import csv as csvmod
-    row = next(csvmod.DictReader(open(tmp_path / "report" / "runs.csv")))
+    row = next(csvmod.DictReader(open(rep / "runs.csv")))
     assert float(row["J"]) == pytest.approx(misfit.misfit_one(mean, data)[0], rel=1e-5)
     peaks = [c["ratio"].max() for c in each]
     assert float(row["peak_sim_0.2"]) == pytest.approx(np.mean(peaks), rel=1e-5)
     assert float(row["peak_sd_0.2"]) == pytest.approx(np.std(peaks, ddof=1), rel=1e-4)
     assert float(row["peak_sd_0.2"]) > 0
-    written = misfit.read_curve(tmp_path / "report" / "curve_best_0.2MPa.csv")
+    written = misfit.read_curve(rep / "curve_best_0.2MPa.csv")
     assert np.allclose(written["ratio"], mean["ratio"], rtol=1e-5)
-    assert "Samples per pressure: 2 (seeds 7331, 7332)" in (tmp_path / "report" / "report.md").read_text()
+    assert "Samples per pressure: 2 (seeds 7331, 7332)" in (rep / "report.md").read_text()
 
 
 def test_fit_recovers_a_known_friction(tmp_path):
