@@ -35,7 +35,7 @@ class Calibration:
     # ---- samples ------------------------------------------------------------------------
     def seeds(self):
         """The samples per pressure: --seeds of them from --seed on."""
-        return list(range(self.a.seed, self.a.seed + getattr(self.a, "seeds", 1)))
+        return list(range(self.a.seed, self.a.seed + self.a.seeds))
 
     def prep_key(self, p, E, seed=None):
         a = self.a
