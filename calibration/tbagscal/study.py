@@ -219,6 +219,10 @@ def study_figure(path, data, todo, ps):
         for k, p in enumerate(ps):
             d = data[p][1]
             ax[g, k].plot(d[:, 0], d[:, 2], "ko", ms=3, label="Toyoura e0 0.68")
+            base = todo[0]    # the fitted sand on the first seed: the reference of every group
+            if group != base.group and p in base.runs:
+                cur = read_curve(base.runs[p]["csv"])
+                ax[g, k].plot(cur["eps_a_pct"], cur["eps_v_pct"], "k--", lw=1, label="fitted, " + base.label)
             for n, c in enumerate([c for c in todo if c.group == group and p in c.runs]):
                 cur = read_curve(c.runs[p]["csv"])
                 ax[g, k].plot(cur["eps_a_pct"], cur["eps_v_pct"], color="C%d" % n, lw=1, label=c.label)
