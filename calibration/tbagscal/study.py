@@ -78,15 +78,15 @@ def cases(base, best):
     return out
 
 
-def probe_limits(cal, pressures, pool):
+def probe_limits(cal, pressures, pool, E):
     """Void ratio of the frictionless (densest) and mu_prep = 1 (loosest) preparations."""
     def one(p, mu):
-        key = "limit_" + cal.prep_key(p, cal.a.E) + "_mu%s" % fmt(mu)
+        key = "limit_" + cal.prep_key(p, E) + "_mu%s" % fmt(mu)
         hit = cal.prep_cache.get(key)
         if hit:
             return hit["e"]
         d = cal.work / "limits" / key
-        run_deck("in.triax_prep", d, dict(cal.cell_vars(cal.a.E), sigma3=fmt(p * 1e6), E=fmt(cal.a.E),
+        run_deck("in.triax_prep", d, dict(cal.cell_vars(E), sigma3=fmt(p * 1e6), E=fmt(E),
                                           mu_prep=fmt(mu), e0=fmt(cal.a.void_ratio), seed=cal.a.seed,
                                           out="prep.restart"))
         e = summary(d, "prep")["void_ratio"]
@@ -103,7 +103,7 @@ def run_study(base, data, out_dir):
     todo = cases(base, best)
     pool = cf.ThreadPoolExecutor(max_workers=a.jobs)
     t0 = time.time()
-    limits = probe_limits(base, a.pressures, pool)
+    limits = probe_limits(base, a.pressures, pool, best["E"])
     futs = [(c, p, pool.submit(c.cal.shear, c.prm, p)) for c in todo for p in a.pressures]
     for c, p, f in futs:
         try:

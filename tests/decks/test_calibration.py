@@ -165,6 +165,34 @@ def test_fit_with_several_samples_per_pressure(tmp_path):
     assert "Samples per pressure: 2 (seeds 7331, 7332)" in (rep / "report.md").read_text()
 
 
+def test_contraction_study_on_a_tiny_sample(tmp_path):
+    """--study with one seed and no other variant: the packing's limits bracket the sample's void
+    ratio, the seed's row and the spread table are written; without the fit's runs.csv it stops
+    with a message naming the file."""
+    rep = tmp_path / "report"
+    res = run_fit(TINY_ARGS + ["--pressures", "0.2", "--study"], tmp_path)
+    assert res.returncode == 2 and "--study needs" in res.stderr and "runs.csv" in res.stderr
+    rep.mkdir()
+    (rep / "runs.csv").write_text("n,mu,mur,E,J\n1,0.5,0.1,1.8e9,0.3\n2,0.6,0.1,1.8e9,0.2\n")
+    fit = load_fit()
+    import importlib
+    study = importlib.import_module("tbagscal.study")
+    study.SEEDS, study.E_FACTORS, study.VOID_RATIOS, study.FRICTIONS = (7331,), (), (), ()
+    a = fit.parse_args(TINY_ARGS + ["--pressures", "0.2", "--study", "--no-figure",
+                                    "--workdir", str(tmp_path / "work"), "--out", str(rep)])
+    cal = fit.Calibration(a)
+    study.run_study(cal, fit.load_data(a.data, a.pressures), rep)
+    text = (rep / "contraction-study.md").read_text()
+    print(text)
+    import csv as csvmod
+    rows = list(csvmod.DictReader(open(rep / "contraction-study.csv")))
+    assert len(rows) == 1 and rows[0]["case"] == "seed 7331" and float(rows[0]["mu"]) == 0.6
+    lim = [l for l in text.splitlines() if l.startswith("| 0.2 |")][0].split("|")
+    emin, emax, e0 = float(lim[2]), float(lim[3]), float(rows[0]["e0"])
+    assert emin < e0 < emax and 0 < float(rows[0]["Dr"]) < 1
+    assert float(rows[0]["contraction"]) > 0 and "| seed | seed 7331 | 0.2 |" in text
+
+
 def test_fit_recovers_a_known_friction(tmp_path):
     """A synthetic target made by the deck itself (the tiny sample at 0.2 MPa with mu = 0.6,
     written as a data set with its manifest), then a fit of mu from 0.3 with 8 evaluations (grid
