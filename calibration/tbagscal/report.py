@@ -1,4 +1,5 @@
 """The calibration's report (report.md, runs.csv, curve CSVs) and the sand include for the decks."""
+import contextlib
 import csv
 import shutil
 import sys
@@ -13,12 +14,25 @@ from .figure import figure
 from .misfit import mean_curve, read_curve
 
 
-def write_report(cal, data, rows, out_dir):
-    a = cal.a
+@contextlib.contextmanager
+def published(out_dir):
+    """A temporary directory beside out_dir to write into; its files move into out_dir only when
+    the block ends without error, so a failed call leaves no partial report."""
     out_dir = Path(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=".fit-", dir=out_dir.parent))
+    tmp = Path(tempfile.mkdtemp(prefix=".out-", dir=out_dir.parent))
     try:
+        yield tmp
+        out_dir.mkdir(parents=True, exist_ok=True)
+        for f in tmp.iterdir():
+            f.replace(out_dir / f.name)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def write_report(cal, data, rows, out_dir):
+    a = cal.a
+    with published(out_dir) as tmp:
         paper = rows[0]
         best = min(rows, key=lambda r: r["J"])
         ps = a.pressures
@@ -98,11 +112,6 @@ def write_report(cal, data, rows, out_dir):
         (tmp / SAND_INCLUDE).write_text(sand_include(best, len(rows)))
         if not a.no_figure:
             figure(tmp / "triaxial.png", data, curves, ps, paper, best)
-        out_dir.mkdir(parents=True, exist_ok=True)
-        for f in tmp.iterdir():
-            f.replace(out_dir / f.name)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
     return best
 
 
@@ -131,17 +140,24 @@ def sand_include(best, n_evaluations, nu=0.1):
             % (n_evaluations, best["J"], best["E"], nu, best["mu"], best["mur"], best["n"], best["J"]))
 
 
-def rewrite_sand_include(out_dir):
-    """sand_calibrated.lmp from an existing runs.csv (the row of least misfit J)."""
+def read_runs(out_dir, missing="no %s: run the calibration first"):
+    """The evaluations of OUT/runs.csv (n, mu, mur, E, J); missing: the message if it is absent."""
     path = Path(out_dir) / "runs.csv"
     if not path.is_file():
-        fail("no %s: run the calibration first" % path)
+        fail(missing % path)
     with open(path, newline="") as fh:
         rows = [{k: float(v) for k, v in r.items() if k in ("n", "mu", "mur", "E", "J")}
                 for r in csv.DictReader(fh)]
     if not rows:
         fail("%s has no evaluations" % path)
+    for r in rows:
+        r["n"] = int(r["n"])
+    return rows
+
+
+def rewrite_sand_include(out_dir):
+    """sand_calibrated.lmp from an existing runs.csv (the row of least misfit J)."""
+    rows = read_runs(out_dir)
     best = min(rows, key=lambda r: r["J"])
-    best["n"] = int(best["n"])
     (Path(out_dir) / SAND_INCLUDE).write_text(sand_include(best, len(rows)))
     return best

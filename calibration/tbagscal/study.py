@@ -11,17 +11,15 @@ void ratio can be read as a relative density of these spheres and compared with 
 import argparse
 import concurrent.futures as cf
 import csv
-import shutil
 import sys
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
 from .common import PAPER, PREP_MU_MAX, FitError, fmt
 from .evaluate import Calibration
 from .misfit import misfit_one, read_curve
+from .report import published, read_runs
 from .runs import run_deck, summary
 
 # Toyoura sand's limiting void ratios (standard values, Ishihara 1993): the data's e0 = 0.68 is a
@@ -34,12 +32,8 @@ FRICTIONS = ((PAPER["mu"], PAPER["mur"]), (0.5, 0.25), (0.8, 0.1), (1.2, 0.25), 
 
 
 def read_best(out_dir):
-    path = Path(out_dir) / "runs.csv"
-    if not path.is_file():
-        raise FitError("--study needs %s (the fit's evaluations): run the calibration first" % path)
-    with open(path, newline="") as fh:
-        rows = [{k: float(r[k]) for k in ("n", "mu", "mur", "E", "J")} for r in csv.DictReader(fh)]
-    return min(rows, key=lambda r: r["J"])
+    return min(read_runs(out_dir, "--study needs %s (the fit's evaluations): run the calibration first"),
+               key=lambda r: r["J"])
 
 
 def curve_measures(c):
@@ -188,9 +182,7 @@ def write_study(base, data, best, todo, limits, out_dir, seconds):
         L.append("| %g | %s | %s | %s | %s | %.2f, %.2f |" % (p, ms("peak"), ms("contraction"), ms("ev_10"),
                                                          ms("J"), meas[p]["peak"], meas[p]["contraction"]))
     L.append("\n(mean +- standard deviation over %d seeds [range])\n" % len(SEEDS))
-    Path(out_dir).parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=".study-", dir=Path(out_dir).parent))
-    try:
+    with published(out_dir) as tmp:
         (tmp / "contraction-study.md").write_text("\n".join(L) + "\n")
         cols = ["group", "case", "p", "mu", "mur", "E", "seed", "e0", "Dr", "Z0", "peak", "ea_peak",
                 "contraction", "ea_contraction", "ev_10", "ea_end", "ev_end", "J", "Jratio", "Jvol"]
@@ -201,11 +193,6 @@ def write_study(base, data, best, todo, limits, out_dir, seconds):
                 w.writerow([("%.6g" % r[k]) if isinstance(r[k], float) else r[k] for k in cols])
         if not a.no_figure:
             study_figure(tmp / "contraction-study.png", data, todo, ps)
-        Path(out_dir).mkdir(parents=True, exist_ok=True)
-        for f in tmp.iterdir():
-            shutil.move(str(f), str(Path(out_dir) / f.name))
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
 
 
 def study_figure(path, data, todo, ps):
