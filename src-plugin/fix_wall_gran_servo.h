@@ -64,6 +64,7 @@ class FixWallGranServo : public Fix {
   std::vector<tbags::contact::Params> params[2];    // per face and type, built in init()
   int rolling;
   bool limit_damping;
+  bool implicit_damping = false;    // 'damping implicit' (law::Contact::hm)
   int size_history;
   double **history;
 

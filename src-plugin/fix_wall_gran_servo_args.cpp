@@ -41,6 +41,9 @@ static constexpr int NVECTOR = 22;    // compute_vector's outputs
      converge TOL N                   (|F - F_target| < TOL |F_target| for N steps)
      bounds LO1 HI1 LO2 HI2           (rectangle in the two tangential axes)
      warn N                           (warn after N steps at vmax)
+     damping explicit|implicit        (contact damping against the half step's velocities, as
+                                      stock, or against the end of the step's: stable at twice
+                                      the time step)
 ------------------------------------------------------------------------- */
 
 FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
@@ -150,9 +153,17 @@ FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
       need(1);
       warn_steps = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
       iarg += 2;
+    } else if (kw == "damping") {
+      need(1);
+      const std::string how = arg[iarg + 1];
+      if (how != "explicit" && how != "implicit")
+        error->all(FLERR, "{}: damping must be explicit (as stock) or implicit, not '{}'", STYLE,
+                   how);
+      implicit_damping = how == "implicit";
+      iarg += 2;
     } else {
       error->all(FLERR, "{}: unknown keyword '{}'; use material, coeff, film, velocity, servo, "
-                 "free, converge, bounds or warn", STYLE, kw);
+                 "free, converge, bounds, warn or damping", STYLE, kw);
     }
   }
   if (Eplate < 0.0) error->all(FLERR, "{}: missing 'material E nu' of the plate", STYLE);

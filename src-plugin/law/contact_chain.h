@@ -41,6 +41,10 @@ template <int W> struct alignas(64) Lanes {
   double meff[N], fne[N], vnnr[N];    // from the geometry loop to the normal force
   // one contact's parts (Result): tangential force, rolling pseudo-force, centre distance
   double fs[3][N], fr[3][N], r[N];
+  // one contact's implicit damping (Contact::hm > 0, else unused): the predicted relative
+  // velocity and angular velocities, hm; the predicted normal and tangential contact-point
+  // velocities (from the geometry loop)
+  double vrd[3][N], wid[3][N], wjd[3][N], hm[N], vnd[N], vtd[3][N];
 };
 using Batch = Lanes<32>;    // the pair's: 32 contacts (64 took 2 % longer)
 
@@ -88,15 +92,29 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
     b.vnnr[l] = vnnr;
     b.delta[l] = o.delta;
     b.reff[l] = reff;
-    if (Lanes<W>::ONE) b.r[l] = o.r;
+    if constexpr (Lanes<W>::ONE) {
+      b.r[l] = o.r;
+      double vnd = vnnr;
+      V3 vtd = vt;
+      if (b.hm[l] > 0.0)
+        contact_velocity(nv, b.radi[l], b.radj[l], row3(b.vrd, l), row3(b.wid, l),
+                         row3(b.wjd, l), vnd, vtd);
+      b.vnd[l] = vnd;
+      set_row3(b.vtd, l, vtd);
+    }
   }
   // loop 2: normal damping (stage 2; its square root here, where the divider has time) and
   // tangential history (stage 3)
   TBAGS_PRAGMA_SIMD_OR_REDO
   for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
-    double sqma;
-    const double fn = normal_force(p, clip, b.meff[l], b.a[l], b.fne[l], b.vnnr[l], sqma);
+    double sqma, vnnr = b.vnnr[l];
+    if constexpr (Lanes<W>::ONE) {    // implicit damping: the end of the step's normal velocity
+      if (b.hm[l] > 0.0)
+        vnnr = implicit_velocity(b.vnd[l], b.fne[l], p.cn * std::sqrt(b.meff[l] * b.a[l]),
+                                 b.hm[l]);
+    }
+    const double fn = normal_force(p, clip, b.meff[l], b.a[l], b.fne[l], vnnr, sqma);
     b.sqma[l] = sqma;
     b.fn[l] = fn;
     if (UPDATE) {
@@ -110,9 +128,15 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
   for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
     V3 ht = row3(b.h, l);
+    V3 vt = row3(b.vt, l);
+    if constexpr (Lanes<W>::ONE) {    // implicit damping: the end of the step's tangential velocity
+      if (b.hm[l] > 0.0)
+        vt = implicit_velocity(row3(b.vtd, l), (-p.kt * b.a[l]) * ht, p.ct * b.sqma[l],
+                               TANGENTIAL_COMPLIANCE * b.hm[l]);
+    }
     LaneOut o;
-    tangential_force(p, row3(b.n, l), row3(b.vt, l), b.a[l], b.sqma[l], b.fn[l], b.delta[l],
-                     b.radi[l], b.radj[l], wall, ht, o);
+    tangential_force(p, row3(b.n, l), vt, b.a[l], b.sqma[l], b.fn[l], b.delta[l], b.radi[l],
+                     b.radj[l], wall, ht, o);
     set_row3(b.h, l, ht);
     if (Lanes<W>::ONE) set_row3(b.fs, l, o.fs);
     const double fl = SPECIAL ? b.factor[l] : 1.0;
@@ -176,6 +200,11 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
   set_row3(b.h, 0, load3(hist));
   set_row3(b.h + 3, 0, ROLL == ROLLING_EPSD ? load3(hist + 3) : V3{0.0, 0.0, 0.0});
   set_row3(b.fr, 0, V3{0.0, 0.0, 0.0});    // no rolling: the chain leaves it
+  const bool implicit = c.hm > 0.0;    // damping against the end of the step's velocities
+  b.hm[0] = c.hm;
+  set_row3(b.vrd, 0, load3(implicit ? c.vdi : c.vi) - load3(c.vj));
+  set_row3(b.wid, 0, load3(implicit ? c.wdi : c.wi));
+  set_row3(b.wjd, 0, load3(c.wj));
   if (update)
     batch_law<ROLL, true, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
   else

@@ -428,3 +428,145 @@ TEST(ContactLaw, ValueHelpersMatchPointerHelpers)
   EXPECT_EQ(select(true, p, q).y, 2.0);
   EXPECT_EQ(select(false, p, q).y, 5.0);
 }
+
+namespace {
+// A sphere on a plate (below it, normal +z): mass m, radius r; Contact with the plate.
+struct OnPlate {
+  double r = 2.5e-3, m = 2.9e-5, dt = 1e-6;
+  double dx[3] = {0, 0, 0}, v[3] = {0, 0, 0}, w[3] = {0, 0, 0}, z[3] = {0, 0, 0};
+  double vd[3] = {0, 0, 0}, wd[3] = {0, 0, 0};
+  Contact c(double height, bool implicit, const double *fother)
+  {
+    dx[2] = height;
+    Contact k;
+    k.dx = dx; k.reff = r; k.meff = m; k.radi = r; k.radj = 0.0;
+    k.vi = v; k.vj = z; k.wi = w; k.wj = z; k.wall = true; k.dt = dt;
+    if (implicit) {    // as fix wall/gran/servo: the velocities predicted from the forces so far
+      const double hm = 0.5 * dt / m;
+      for (int d = 0; d < 3; d++) {
+        vd[d] = v[d] + hm * fother[d];
+        wd[d] = w[d];
+      }
+      k.vdi = vd; k.wdi = wd; k.hm = hm;
+    }
+    return k;
+  }
+};
+Params bag_on_steel(double e)
+{
+  return make_params(mix_E(0.75e9, 0.1, 200e9, 0.1), mix_G(0.75e9, 0.1, 200e9, 0.1), e, 1e10,
+                     0.0, ROLLING_NONE, false);
+}
+}    // namespace
+
+// Implicit damping against the closed form: the damping forces act against the end of the step's
+// contact velocities, u = (u_pred + hm f_el) / (1 + eta hm), normal (hm = dt/2/m) and
+// tangential (3.5 hm: the sphere's rotation); without hm the same bits as the stock call.
+TEST(Wall, ImplicitDampingClosedForm)
+{
+  const Params p = bag_on_steel(0.2);
+  OnPlate s;
+  s.dt = 3e-6;
+  s.v[0] = 2e-3; s.v[1] = -1e-3; s.v[2] = -4e-3;
+  s.w[1] = 0.5;
+  const double fother[3] = {0.3, 0.1, -0.8};
+  const double d = 8e-6;
+  double h0[6] = {2e-7, -1e-7, 0, 0, 0, 0};
+  double h[6], he[6];
+  std::copy(h0, h0 + 6, h);
+  std::copy(h0, h0 + 6, he);
+  Result o, oe, ox;
+  const Contact ce = s.c(s.r - d, false, fother);
+  compute(p, ce, he, true, oe);
+  const Contact ci = s.c(s.r - d, true, fother);
+  compute(p, ci, h, true, o);
+
+  const double a = std::sqrt(s.r * d), hm = 0.5 * s.dt / s.m;
+  const double fne = p.kn * a * d, etan = p.cn * std::sqrt(s.m * a), etat = p.ct * std::sqrt(s.m * a);
+  // normal (+z): u_pred = v_z + hm f_z
+  const double un = (s.v[2] + hm * fother[2] + hm * fne) / (1.0 + etan * hm);
+  expect_rel(o.fn, fne - etan * un);
+  // tangential: the history integrated with the half step's velocity (v_t - r w x n), the
+  // damping against the predicted one (no predicted spin change here)
+  const double vt[2] = {s.v[0] - s.r * s.w[1], s.v[1] + s.r * s.w[0]};
+  const double vtp[2] = {vt[0] + hm * fother[0], vt[1] + hm * fother[1]};
+  for (int k = 0; k < 2; k++) {
+    const double hk = h0[k] + s.dt * vt[k];
+    expect_rel(h[k], hk);
+    const double ut = (vtp[k] - 3.5 * hm * p.kt * a * hk) / (1.0 + etat * 3.5 * hm);
+    expect_rel(o.fs[k], -p.kt * a * hk - etat * ut);
+  }
+  // the two schemes differ (this case is stiff enough to tell them apart)
+  EXPECT_GT(std::fabs(o.fs[0] - oe.fs[0]), 1e-3 * std::fabs(oe.fs[0]));
+  // hm = 0 with predicted velocities given: the stock bits
+  Contact cz = ci;
+  cz.hm = 0.0;
+  std::copy(h0, h0 + 6, h);
+  compute(p, cz, h, true, ox);
+  for (int k = 0; k < 3; k++) {
+    EXPECT_EQ(ox.f[k], oe.f[k]);
+    EXPECT_EQ(ox.ti[k], oe.ti[k]);
+    EXPECT_EQ(h[k], he[k]);
+  }
+}
+
+namespace {
+// A no-slip sphere pressed onto a plate by a constant force, its tangential contact mode excited,
+// integrated as LAMMPS does (nve/sphere: half kick, drift, forces, half kick; the plate's force
+// last, as a fix's post_force). Returns the largest |tangential contact velocity| over the last
+// `tail` of nsteps, relative to the initial one; omega_dt: the tangential mode's omega dt.
+double tangential_mode(bool implicit, double omega_dt, int nsteps, int tail = 200)
+{
+  const Params p = bag_on_steel(0.2);
+  OnPlate s;
+  const double F0 = 5.0;    // N pressing the sphere down: its overlap sets the stiffness
+  const double d0 = std::pow(F0 / (p.kn * std::sqrt(s.r)), 2.0 / 3.0);
+  const double kt = p.kt * std::sqrt(s.r * d0);
+  s.dt = omega_dt / std::sqrt(TANGENTIAL_COMPLIANCE * kt / s.m);
+  const double I = 0.4 * s.m * s.r * s.r;
+  double zpos = s.r - d0, hist[6] = {0, 0, 0, 0, 0, 0};
+  const double u0 = 1e-4;
+  s.v[0] = u0;
+  double f[3] = {0, 0, -F0}, t[3] = {0, 0, 0}, worst = 0.0;
+  for (int step = 0; step < nsteps; step++) {
+    for (int k = 0; k < 3; k++) {
+      s.v[k] += 0.5 * s.dt * f[k] / s.m;
+      s.w[k] += 0.5 * s.dt * t[k] / I;
+    }
+    zpos += s.dt * s.v[2];
+    const double fext[3] = {0, 0, -F0};
+    Result o;
+    const Contact c = s.c(zpos, implicit, fext);
+    compute(p, c, hist, true, o);
+    for (int k = 0; k < 3; k++) {
+      f[k] = fext[k] + o.f[k];
+      t[k] = o.ti[k];
+      s.v[k] += 0.5 * s.dt * f[k] / s.m;
+      s.w[k] += 0.5 * s.dt * t[k] / I;
+    }
+    if (!std::isfinite(s.v[0]) || std::fabs(s.v[0]) > 1e3 * u0) return 1e300;
+    if (step >= nsteps - tail) worst = std::max(worst, std::fabs(s.v[0] - s.r * s.w[1]) / u0);
+  }
+  return worst;
+}
+}    // namespace
+
+// The no-slip contact's tangential mode (damping ratio 0.78) is unstable above omega dt = 1.0
+// with the half step's velocities (stock) and stable up to the undamped limit 2 with implicit
+// damping; at a small step the two schemes give the same motion.
+TEST(Wall, ImplicitDampingStableAtTwiceTheStep)
+{
+  EXPECT_LT(tangential_mode(false, 0.9, 4000), 1e-3);    // stock, below its limit: decays
+  EXPECT_GT(tangential_mode(false, 1.1, 4000), 1.0);     // stock, above it: grows
+  EXPECT_LT(tangential_mode(true, 1.1, 4000), 1e-3);     // implicit: decays
+  EXPECT_LT(tangential_mode(true, 1.9, 4000), 1e-3);
+  EXPECT_GT(tangential_mode(true, 2.1, 4000), 1.0);      // the undamped limit stays
+  // the same physics: at small steps the velocity after the same time (0.5/omega, while it
+  // decays) agrees, and the difference halves with the step (both schemes are first order in
+  // the damping's velocity)
+  const double e1 = tangential_mode(false, 0.01, 50, 1), i1 = tangential_mode(true, 0.01, 50, 1);
+  const double e2 = tangential_mode(false, 0.005, 100, 1), i2 = tangential_mode(true, 0.005, 100, 1);
+  EXPECT_GT(e1, 0.2);
+  EXPECT_NEAR(i1, e1, 0.02 * e1);
+  EXPECT_LT(std::fabs(i2 - e2), 0.6 * std::fabs(i1 - e1));
+}
