@@ -56,6 +56,8 @@ BAD = [
     (PLATE + " velocity q 0.1", "velocity dimension must be x, y or z"),
     (PLATE.replace("zplane 0.0", "zplane 0.0095"), "the plate starts 0.8 radii inside a particle"),
     (PLATE + " velocity x v_nothing", "velocity variable nothing does not exist"),
+    (PLATE + " damping later", "damping must be explicit (as stock) or implicit, not 'later'"),
+    (PLATE + " damping", "keyword 'damping' needs 1 value(s)"),
     # films: a sheet with particles on both sides (FILM: the sphere at 10 mm, on its + side)
     (FILM.replace(" coeff * friction 1e10 rolling 0 restitution 0.2 face -1", ""),
      "no film (- face) coefficients; add 'coeff 1 friction mu rolling mu_r restitution e face -1'"),

@@ -16,6 +16,8 @@ from tbagspost.run import read_csv  # (postprocess/ is on the path through twoen
 from tbagsrun.shear import means_to_csv
 
 RUN = {"nx": 9, "ny": 9, "nz": 5, "v": 0.015, "ufinal": 0.001}
+# LIGGGHTS's servo plates damp explicitly (as stock) at 1.5e-6 s: LAMMPS runs the same scheme
+EXPLICIT = {"dt": 1.5e-6, "damping": "explicit"}
 
 
 @pytest.fixture(scope="module")
@@ -23,7 +25,7 @@ def runs(tiny_filled, tmp_path_factory):
     fill = tiny_filled / "fill.data"
     wd = tmp_path_factory.mktemp("lammps")
     (wd / "fill.data").write_bytes(fill.read_bytes())
-    lmprun.run(lmprun.INPUTS / "in.shear", wd, variables=RUN).check()
+    lmprun.run(lmprun.INPUTS / "in.shear", wd, variables=dict(RUN, **EXPLICIT)).check()
     csv = np.genfromtxt(wd / "shear.csv", delimiter=",", names=True, comments="#")
     lmp = {"t": csv["time_s"], "u": csv["u_mm"], "w": csv["w_mm"], "S": csv["S_N"], "F": csv["Fv_N"]}
     lmp_log = (wd / "log.lammps").read_text()

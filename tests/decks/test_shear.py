@@ -36,7 +36,8 @@ def test_protocol_on_a_tiny_bag(filled):
 @pytest.mark.parametrize("var,message", [({"nx": 2}, "nx, ny, nz must be at least 3"),
                                          ({"Fv": -5}, "Fv must be > 0"),
                                          ({"ufinal": 0}, "v and ufinal must be > 0"),
-                                         ({"du_dump": 5e-5}, "du_dump >= du_csv")])
+                                         ({"du_dump": 5e-5}, "du_dump >= du_csv"),
+                                         ({"damping": "sideways"}, "damping must be implicit or explicit")])
 def test_bad_variables(tmp_path, var, message):
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, **var))
     assert res.returncode != 0 and message in res.output
@@ -77,11 +78,14 @@ def test_resume_from_checkpoint(filled, tmp_path):
     assert "SHEARED: u 0.600 mm" in res.output
 
 
-def test_same_on_one_and_two_ranks(filled, tmp_path):
+@pytest.mark.parametrize("damping", ["explicit", "implicit"])
+def test_same_on_one_and_two_ranks(filled, tmp_path, damping):
     """The whole shear stage (compression and the first 0.2 mm of shear) on 1 and 2 ranks gives
-    the same CSV, digit for digit (forces agree to round-off, which the CSV's 4 decimals hide)."""
+    the same CSV, digit for digit (forces agree to round-off, which the CSV's 4 decimals hide), with
+    the plates' explicit (default) and implicit damping (-var damping: fix wall/gran/servo's keyword
+    on both plates only when implicit)."""
     import shutil
-    v = dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.001)
+    v = dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.001, damping=damping)
     csv = {}
     for ranks in (1, 2):
         wd = tmp_path / str(ranks)
@@ -89,6 +93,9 @@ def test_same_on_one_and_two_ranks(filled, tmp_path):
         shutil.copy(filled / "fill.data", wd)
         lmprun.run(INPUTS / "in.shear", wd, np_ranks=ranks, variables=v).check()
         csv[ranks] = (wd / "shear.csv").read_text()
+        fixes = [line for line in (wd / "log.lammps").read_text().splitlines()
+                 if line.startswith("fix") and "wall/gran/servo" in line and "$" not in line]
+        assert len(fixes) == 2 and all(("damping implicit" in f) == (damping == "implicit") for f in fixes)
     print(csv[2])
     assert csv[1] == csv[2] and len(csv[1].splitlines()) >= 4
 
