@@ -36,8 +36,6 @@ namespace law = tbags::contact;
 static constexpr int NRESTART = 13;
 // warn when the plate force alternates from step to step by more than this fraction of it
 static constexpr double CHATTER_FRACTION = 0.01;
-// moment of inertia / (m r^2) of a particle: a solid sphere, as fix nve/sphere
-static constexpr double INERTIA = 0.4;
 
 FixWallGranServo::~FixWallGranServo()
 {
@@ -232,7 +230,7 @@ void FixWallGranServo::post_force(int)
     double vd[3], wd[3];
     if (implicit_damping) {    // i's velocities at the end of the step from the forces so far
       const double hm = 0.5 * dt * force->ftm2v / rmass[i];
-      const double hi = hm / (INERTIA * radius[i] * radius[i]);
+      const double hi = hm / (law::SPHERE_INERTIA * radius[i] * radius[i]);
       for (int k = 0; k < 3; k++) {
         vd[k] = v[i][k] + hm * f[i][k];
         wd[k] = omega[i][k] + hi * torque[i][k];

@@ -42,9 +42,9 @@ template <int W> struct alignas(64) Lanes {
   // one contact's parts (Result): tangential force, rolling pseudo-force, centre distance
   double fs[3][N], fr[3][N], r[N];
   // one contact's implicit damping (Contact::hm > 0, else unused): the predicted relative
-  // velocity and angular velocities, hm; the predicted normal and tangential contact-point
-  // velocities (from the geometry loop)
-  double vrd[3][N], wid[3][N], wjd[3][N], hm[N], vnd[N], vtd[3][N];
+  // velocity and angular velocity of i (a plate's is wj), hm; the predicted normal and
+  // tangential contact-point velocities (from the geometry loop)
+  double vrd[3][N], wid[3][N], hm[N], vnd[N], vtd[3][N];
 };
 using Batch = Lanes<32>;    // the pair's: 32 contacts (64 took 2 % longer)
 
@@ -98,7 +98,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
       V3 vtd = vt;
       if (b.hm[l] > 0.0)
         contact_velocity(nv, b.radi[l], b.radj[l], row3(b.vrd, l), row3(b.wid, l),
-                         row3(b.wjd, l), vnd, vtd);
+                         row3(b.wj, l), vnd, vtd);
       b.vnd[l] = vnd;
       set_row3(b.vtd, l, vtd);
     }
@@ -204,7 +204,6 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
   b.hm[0] = c.hm;
   set_row3(b.vrd, 0, load3(implicit ? c.vdi : c.vi) - load3(c.vj));
   set_row3(b.wid, 0, load3(implicit ? c.wdi : c.wi));
-  set_row3(b.wjd, 0, load3(c.wj));
   if (update)
     batch_law<ROLL, true, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
   else

@@ -118,9 +118,11 @@ TBAGS_INLINE vec::V3 implicit_velocity(const vec::V3 &u_pred, const vec::V3 &f_e
   using namespace vec;
   return (1.0 / (1.0 + eta * hm)) * (u_pred + hm * f_el);
 }
-// a solid sphere's contact point under a tangential force F moves by F (1/m + r^2/I) = 3.5 F/m
-// (I = 0.4 m r^2, lever arm r)
-constexpr double TANGENTIAL_COMPLIANCE = 3.5;
+// a particle's moment of inertia over m r^2: a solid sphere (as fix nve/sphere); its contact point
+// under a tangential force F moves by F (1/m + r^2/I) = 3.5 F/m (lever arm r)
+constexpr double SPHERE_INERTIA = 0.4;
+constexpr double TANGENTIAL_COMPLIANCE = 1.0 + 1.0 / SPHERE_INERTIA;
+static_assert(TANGENTIAL_COMPLIANCE == 3.5, "a solid sphere: 1 + 1/0.4");
 
 struct Result {
   double f[3];                  // force on i (j gets -f)

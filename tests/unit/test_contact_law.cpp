@@ -523,7 +523,7 @@ double tangential_mode(bool implicit, double omega_dt, int nsteps, int tail = 20
   const double d0 = std::pow(F0 / (p.kn * std::sqrt(s.r)), 2.0 / 3.0);
   const double kt = p.kt * std::sqrt(s.r * d0);
   s.dt = omega_dt / std::sqrt(TANGENTIAL_COMPLIANCE * kt / s.m);
-  const double I = 0.4 * s.m * s.r * s.r;
+  const double I = SPHERE_INERTIA * s.m * s.r * s.r;
   double zpos = s.r - d0, hist[6] = {0, 0, 0, 0, 0, 0};
   const double u0 = 1e-4;
   s.v[0] = u0;
