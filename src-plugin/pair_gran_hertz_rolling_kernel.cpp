@@ -290,8 +290,8 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
   auto forget = [](double *hist) __attribute__((always_inline)) {
     for (int k = 0; k < NH; k++) hist[k] = 0.0;
   };
-  // a touching neighbour j of i into the batch (flushed when full)
-  auto gather = [&](const I &c, int j, double factor_lj, double *hist, const v4d d)
+  // neighbour j of i into the batch's next row n (taken by advancing n)
+  auto put = [&](const I &c, int j, double factor_lj, double *hist, const v4d d)
       __attribute__((always_inline)) {
     __builtin_prefetch(hist, 1);    // read at the flush, written back after the law
     const AtomV &bj = pv[j];
@@ -316,7 +316,9 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
     b.wj[0][n] = bj.w[0];
     b.wj[1][n] = bj.w[1];
     b.wj[2][n] = bj.w[2];
-    if (++n == Batch::N) {
+  };
+  auto advance = [&](int by) __attribute__((always_inline)) {    // flushed when full
+    if ((n += by) == Batch::N) {
       flush(n);
       n = 0;
     }
@@ -337,19 +339,16 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
       const I c = atom_i(ck.i);
       const v4d d = c.xi4 - *reinterpret_cast<const v4d *>(&px[j]);
       // the touch flag kept in the candidate (CAND_TOUCH), the list's set when it changes
-      if (!touching(d)) {
-        if (jraw & CAND_TOUCH) {    // was touching: forget
-          ck.j = jraw & ~CAND_TOUCH;
-          *ck.touch = 0;
-          forget(ck.hist);
-        }
-        continue;
+      const bool t = touching(d);
+      if (t != ((jraw & CAND_TOUCH) != 0)) {    // rare: starts touching, or separates (forget)
+        ck.j = jraw ^ CAND_TOUCH;
+        *ck.touch = t;
+        if (!t) forget(ck.hist);
       }
-      if (!(jraw & CAND_TOUCH)) {
-        ck.j = jraw | CAND_TOUCH;
-        *ck.touch = 1;
-      }
-      gather(c, j, factor_lj, ck.hist, d);
+      // every candidate written into the next row, kept if touching: no branch on the
+      // distance test, which the predictor cannot learn
+      put(c, j, factor_lj, ck.hist, d);
+      advance(t);
     }
   } else {    // the whole neighbor list, building the candidate list
     const int *numneigh = list->numneigh;
@@ -380,16 +379,15 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
         const bool candidate = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc * rc;
         double *hist = &allhistory[NH * jj];
         const bool t = touching(d);
-        if (candidate) cd[nc++] = Cand{i, t ? jraw | CAND_TOUCH : jraw, hist, &touch[jj]};
-        if (!t) {
-          if (touch[jj]) {    // was touching: forget (not-touching pairs stay untouched)
-            touch[jj] = 0;
-            forget(hist);
-          }
-          continue;
+        // written into the next entries, kept if a candidate, if touching (no branches)
+        cd[nc] = Cand{i, t ? jraw | CAND_TOUCH : jraw, hist, &touch[jj]};
+        nc += candidate;
+        if (touch[jj] != t) {    // starts touching, or separates: forget
+          touch[jj] = t;
+          if (!t) forget(hist);
         }
-        touch[jj] = 1;
-        gather(c, j, factor_lj, hist, d);
+        put(c, j, factor_lj, hist, d);
+        advance(t);
       }
     }
     ncand = nc;
