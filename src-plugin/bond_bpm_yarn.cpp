@@ -176,7 +176,8 @@ void BondBPMYarn::compute(int eflag, int vflag)
   if (hybrid_flag) fix_bond_history->compress_history();
   ev_init(eflag, vflag);
 
-  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  // flat arrays: atom i's values at 3 i (no row pointer to load per atom)
+  const double *x = atom->x[0], *v = atom->v[0], *omega = atom->omega[0];
   const tagint *tag = atom->tag;
   int **bondlist = neighbor->bondlist;
   const int nbondlist = neighbor->nbondlist;
@@ -195,19 +196,22 @@ void BondBPMYarn::compute(int eflag, int vflag)
       nb = 0;
     }
     btype = type;
-    int i1 = bondlist[n][0], i2 = bondlist[n][1];
     // order by tag: both copies of a bond across ranks (newton off) compute the same numbers
-    if (tag[i2] < tag[i1]) std::swap(i1, i2);
+    // (selected without a branch: which atom of a bond has the lower tag is a coin toss)
+    const int a1 = bondlist[n][0], a2 = bondlist[n][1];
+    const bool swap = tag[a2] < tag[a1];
+    const int i1 = swap ? a2 : a1, i2 = swap ? a1 : a2;
+    const double *x1 = x + 3 * i1, *x2 = x + 3 * i2;
     double *hist = bondstore[n];
     if (!(hist[yarn::R0] > 0.0)) {    // a bond created after the first step
-      double d[3] = {x[i2][0] - x[i1][0], x[i2][1] - x[i1][1], x[i2][2] - x[i1][2]};
+      double d[3] = {x2[0] - x1[0], x2[1] - x1[1], x2[2] - x1[2]};
       hist[yarn::R0] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       for (int k = 1; k < yarn::NHISTORY; k++) hist[k] = 0.0;
     }
     for (int k = 0; k < 3; k++) {
-      b.xi[k][nb] = x[i1][k], b.xj[k][nb] = x[i2][k];
-      b.vi[k][nb] = v[i1][k], b.vj[k][nb] = v[i2][k];
-      b.wi[k][nb] = omega[i1][k], b.wj[k][nb] = omega[i2][k];
+      b.xi[k][nb] = x1[k], b.xj[k][nb] = x2[k];
+      b.vi[k][nb] = v[3 * i1 + k], b.vj[k][nb] = v[3 * i2 + k];
+      b.wi[k][nb] = omega[3 * i1 + k], b.wj[k][nb] = omega[3 * i2 + k];
     }
     for (int k = 0; k < yarn::NHISTORY; k++) b.h[k][nb] = hist[k];
     lane_bond[nb] = n;
@@ -232,7 +236,8 @@ void BondBPMYarn::flush(int nb, int btype)
   yarn::Batch &b = *batch;
   const yarn::Params &p = coeffs[btype].p;
   run_chain(p, b, nb, update->dt, update->setupflag == 0, kernel_avx2);
-  double **x = atom->x, **f = atom->f, **torque = atom->torque;
+  double **x = atom->x;
+  double *f = atom->f[0], *torque = atom->torque[0];    // flat: atom i's at 3 i
   int **bondlist = neighbor->bondlist;
   double **bondstore = fix_bond_history->bondstore;
   const int nlocal = atom->nlocal;
@@ -248,14 +253,14 @@ void BondBPMYarn::flush(int nb, int btype)
     }
     if (newton_bond || i1 < nlocal) {
       for (int k = 0; k < 3; k++) {
-        f[i1][k] += b.f[k][l];
-        torque[i1][k] += b.ti[k][l];
+        f[3 * i1 + k] += b.f[k][l];
+        torque[3 * i1 + k] += b.ti[k][l];
       }
     }
     if (newton_bond || i2 < nlocal) {
       for (int k = 0; k < 3; k++) {
-        f[i2][k] -= b.f[k][l];
-        torque[i2][k] += b.tj[k][l];
+        f[3 * i2 + k] -= b.f[k][l];
+        torque[3 * i2 + k] += b.tj[k][l];
       }
     }
     if (evflag) {
