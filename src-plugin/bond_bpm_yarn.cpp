@@ -236,8 +236,9 @@ void BondBPMYarn::flush(int nb, int btype)
   yarn::Batch &b = *batch;
   const yarn::Params &p = coeffs[btype].p;
   run_chain(p, b, nb, update->dt, update->setupflag == 0, kernel_avx2);
-  double **x = atom->x;
-  double *f = atom->f[0], *torque = atom->torque[0];    // flat: atom i's at 3 i
+  // flat arrays, as in compute(): atom i's values at 3 i
+  const double *x = atom->x[0];
+  double *f = atom->f[0], *torque = atom->torque[0];
   int **bondlist = neighbor->bondlist;
   double **bondstore = fix_bond_history->bondstore;
   const int nlocal = atom->nlocal;
@@ -267,7 +268,8 @@ void BondBPMYarn::flush(int nb, int btype)
       const double ebond = eflag_either ? yarn::axial_energy(p, b.eps[l], hist[yarn::R0]) : 0.0;
       // ev_tally_xyz: del = x1 - x2 and the force on atom 1
       ev_tally_xyz(i1, i2, nlocal, newton_bond, ebond, b.f[0][l], b.f[1][l], b.f[2][l],
-                   x[i1][0] - x[i2][0], x[i1][1] - x[i2][1], x[i1][2] - x[i2][2]);
+                   x[3 * i1] - x[3 * i2], x[3 * i1 + 1] - x[3 * i2 + 1],
+                   x[3 * i1 + 2] - x[3 * i2 + 2]);
     }
   }
 }

@@ -379,7 +379,8 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
         const bool candidate = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc * rc;
         double *hist = &allhistory[NH * jj];
         const bool t = touching(d);
-        // written into the next entries, kept if a candidate, if touching (no branches)
+        // written into the candidate list's and the batch's next entries, kept if a candidate,
+        // if touching (no branch on either test; the flags change only when touching does)
         cd[nc] = Cand{i, t ? jraw | CAND_TOUCH : jraw, hist, &touch[jj]};
         nc += candidate;
         if (touch[jj] != t) {    // starts touching, or separates: forget
