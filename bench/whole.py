@@ -89,6 +89,17 @@ def bond_count(data):
     return int(re.search(r"^\s*(\d+) bonds$", Path(data).read_text(), re.M).group(1))
 
 
+def contact_count(folder):
+    """Touching pairs at the start of the last run of ours in folder (in.shear's contact dump at
+    its first step: the newest dump.contacts.* written; older runs' files may be there), or None."""
+    dumps = sorted(Path(folder).glob("dump.contacts.*"), key=lambda f: f.stat().st_mtime)
+    if not dumps:
+        return None
+    with open(dumps[-1]) as f:
+        head = [next(f, "") for _ in range(4)]
+    return int(head[3]) if head[2].startswith("ITEM: NUMBER OF ENTRIES") else None
+
+
 def whole(ranks_list, repeat, steps, state_dir=None, compare=None):
     wd = ROOT / "runs" / "bench" / "whole"
     state = State(state_dir or prepare(wd))
@@ -114,6 +125,12 @@ def whole(ranks_list, repeat, steps, state_dir=None, compare=None):
                                                        " ".join("%.4f" % (x[s] * per) for s in SECTIONS)), flush=True)
         med = {n: {k: median(r[k] for r in t[n]) for k in ("loop",) + SECTIONS} for n in t}
         steps_run = t["tbags"][0]["steps"]
+        contacts = contact_count(wd / ("tbags-np%d" % ranks))
+        if contacts:
+            print("%-6d contacts: %d (%.2f per atom; the same particles in every setup), ns per contact-step: %s"
+                  % (ranks, contacts, contacts / t["tbags"][0]["atoms"], ", ".join(
+                      "%s %.1f" % (n, 1e9 * ranks * med[n]["Pair"] / (steps_run * contacts)) for n in setups)),
+                  flush=True)
         for other in setups[1:]:
             ratios = [s["loop"] / o["loop"] for o, s in zip(t["tbags"], t[other])]
             print("%-6d whole run: %s / tbags %.2fx (median of %d alternating pairs, range %.2f-%.2f); "
