@@ -21,6 +21,7 @@ from tbagsrun.presets import DEMO_BAG as DEMO, PRESETS  # (launcher/ is on the p
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost.dumps import read_header  # noqa: E402
 from tbagspost.run import bag_size, log_timestep, loops, read_csv  # noqa: E402
 
 V = PRESETS["demo"].runs[0].variables["v"]    # the demo's shear speed
@@ -91,13 +92,10 @@ def bond_count(data):
 
 def contact_count(folder):
     """Touching pairs at the start of the last run of ours in folder (in.shear's contact dump at
-    its first step: the newest dump.contacts.* written; older runs' files may be there), or None."""
+    its first step: the newest dump.contacts.* written; older runs' files may be there), or None
+    when there is none (a malformed one stops, as in post-processing)."""
     dumps = sorted(Path(folder).glob("dump.contacts.*"), key=lambda f: f.stat().st_mtime)
-    if not dumps:
-        return None
-    with open(dumps[-1]) as f:
-        head = [next(f, "") for _ in range(4)]
-    return int(head[3]) if head[2].startswith("ITEM: NUMBER OF ENTRIES") else None
+    return read_header(dumps[-1]).count if dumps else None
 
 
 def whole(ranks_list, repeat, steps, state_dir=None, compare=None):
