@@ -12,8 +12,11 @@ cost is linear in the number of particles at fixed density, so the measured cost
 particle-step of the shear stage at P ranks is applied to the paper's bag (measured on the
 paper's bag itself, the factor is 1). Assumptions, printed with the table: the fill costs no more
 per particle-step than shearing (its grains grow from half size); compression takes the measured
-number of steps (times the ratio of sand heights on a smaller bag); shearing takes
-u_final / (v dt) steps per load (dt of the measured run).
+number of steps (times the ratio of sand heights on a smaller bag), of which the loads share those
+before the force first reaches the shared fraction of the smallest load (./tbags shear runs that
+part once, launcher/tbagsrun/presets.py COMPRESS_SHARED; read from the checkpoint's thermo output,
+every 2,000 steps, the last row below it); shearing takes u_final / (v dt) steps per load (dt of
+the measured run).
 """
 import argparse
 import math
@@ -22,7 +25,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "launcher"))
 import scaling  # noqa: E402
+from tbagsrun.presets import COMPRESS_SHARED  # noqa: E402
 from tbagspost.datafile import DataFile  # noqa: E402
 from tbagspost.run import bag_size, log_timestep, loops, read_csv  # noqa: E402
 
@@ -51,6 +56,28 @@ def timestep(shear_log):
 
 
 D_MIN, D_STEP, E0 = 3.60465e-3, 0.310078e-3, 0.68
+
+
+def shared_steps(log, force):
+    """Steps of the first run (the compression) in log before its thermo force column (v_Fmeas)
+    first reaches `force`: its last thermo row below it (0 without thermo rows)."""
+    below, cols = 0, None
+    for line in log.read_text(errors="replace").splitlines():
+        words = line.split()
+        if cols is None:
+            if words[:1] == ["Step"] and "v_Fmeas" in words:
+                cols = (words.index("Step"), words.index("v_Fmeas"))
+            continue
+        if line.startswith("Loop time"):
+            break
+        try:
+            step, f = int(words[cols[0]]), float(words[cols[1]])
+        except (ValueError, IndexError):
+            continue
+        if f >= force:
+            break
+        below = step
+    return below
 
 
 def bag_particles(nx, ny, nz):
@@ -96,17 +123,23 @@ def project(est_dir, ranks):
     timed = measured(est_dir)
     cost = {p: wall_per_step(xs) / xs[0]["atoms"] for p, xs in timed.items()}
     atoms = bag_particles(PAPER["nx"], PAPER["ny"], PAPER["nz"]) + sand_grains(PAPER["nx"], PAPER["ny"], PAPER["nz"])
-    comp_paper = comp_steps * (PAPER["nz"] - 2) / (nz - 2)
+    height = (PAPER["nz"] - 2) / (nz - 2)
+    comp_paper = comp_steps * height
+    # the part every load shares: to the shared fraction of the smallest load (on this bag's plan)
+    lightest = min(PAPER["loads"]) * (nx - 2) * (ny - 2) / (PAPER["nx"] - 2) / (PAPER["ny"] - 2)
+    shared = min(shared_steps(est_dir / "state" / "log.shear", COMPRESS_SHARED * lightest), comp_steps)
+    shared_paper = shared * height
     shear_steps = PAPER["ufinal"] / (PAPER["v"] * dt)
-    steps_per_load = comp_paper + shear_steps
+    steps_per_load = comp_paper - shared_paper + shear_steps
     rows = []
     pmax = max(cost)
     for p in sorted(set(cost) | {ranks}):
         c = cost[p] if p in cost else cost[pmax] * pmax / p
-        rows.append((p, c, p not in cost, fill_steps * atoms * c / 3600,
+        rows.append((p, c, p not in cost, (fill_steps + shared_paper) * atoms * c / 3600,
                      steps_per_load * atoms * c / 3600))
     return dict(size=(nx, ny, nz), atoms=atoms, fill_steps=fill_steps, comp_steps=comp_steps, dt=dt,
-                comp_paper=comp_paper, shear_steps=shear_steps, rows=rows, timed=timed)
+                comp_paper=comp_paper, shared=shared, shared_paper=shared_paper, shear_steps=shear_steps,
+                rows=rows, timed=timed)
 
 
 def model(est_dir, projection):
@@ -139,7 +172,7 @@ def model(est_dir, projection):
         checks[p] = scaling.check(counted, dict(last["stats"], grid=last["grid"]))
     t1 = scaling.step_time(c, n[1], 1)
     two_measured = wall_per_step(timed[2])
-    steps_total = projection["fill_steps"] + 3 * (projection["comp_paper"] + projection["shear_steps"])
+    steps_total = total_steps(projection)
     rows = []
     for p in MODEL_RANKS:
         t = scaling.step_time(c, n[p], p)
@@ -150,17 +183,26 @@ def model(est_dir, projection):
                 two_model=scaling.step_time(c, n[2], 2, dict(scaling.NETWORK, alpha=0.0, beta=0.0)))
 
 
+def total_steps(r):
+    """The paper run's steps: the fill, the shared part of the compression once, then per load the
+    rest of its compression and its shear."""
+    return r["fill_steps"] + r["shared_paper"] + len(PAPER["loads"]) * (
+        r["comp_paper"] - r["shared_paper"] + r["shear_steps"])
+
+
 def report(r, m=None):
     nx, ny, nz = r["size"]
     out = ["Projected time of `./tbags shear paper` (81 x 81 x 17 bag, %d particles; 3 loads)" % r["atoms"],
            "measured on the %d x %d x %d bag's shear stage; steps: fill %d, compression %d x %.1f "
-           "(sand height ratio) = %.0f, shear %.0f per load (dt %g s)"
+           "(sand height ratio) = %.0f, of which %.0f shared by the loads (run once, with the fill: "
+           "to %g of the smallest load), shear %.0f per load (dt %g s)"
            % (nx, ny, nz, r["fill_steps"], r["comp_steps"], (PAPER["nz"] - 2) / (nz - 2), r["comp_paper"],
-              r["shear_steps"], r["dt"]),
-           "%6s %22s %10s %14s %12s" % ("ranks", "us per particle-step", "fill (h)", "per load (h)", "total (h)")]
+              r["shared_paper"], COMPRESS_SHARED, r["shear_steps"], r["dt"]),
+           "%6s %22s %22s %14s %12s" % ("ranks", "us per particle-step", "fill + shared part (h)", "per load (h)",
+                                          "total (h)")]
     for p, c, extrapolated, fill_h, load_h in r["rows"]:
-        out.append("%6d %20.3f%2s %10.1f %14.1f %12.1f" % (p, c * 1e6, "*" if extrapolated else "", fill_h,
-                                                          load_h, fill_h + 3 * load_h))
+        out.append("%6d %20.3f%2s %22.1f %14.1f %12.1f" % (p, c * 1e6, "*" if extrapolated else "", fill_h,
+                                                          load_h, fill_h + len(PAPER["loads"]) * load_h))
     if any(x[2] for x in r["rows"]):
         out.append("* extrapolated: ideal scaling from the largest measured rank count")
     if m:

@@ -9,6 +9,10 @@ the preset's. shear.py runs them.
 from dataclasses import dataclass, field
 
 LOADS = (5500, 3730, 1960)    # the paper's three vertical loads (N on its 395 x 395 mm bag)
+# runs of one fill at several loads share their compression up to this fraction of the smallest
+# load's F_v (inputs/between_plates.lmp: -var compress_to, compress_from; below 0.98 every load's
+# servo still runs at its speed limit, so the part is the same for all)
+COMPRESS_SHARED = 0.9
 DEMO_BAG = dict(nx=21, ny=21, nz=7)
 # the paper's plan-to-height ratio: inner 130 x 130 x 25 mm (5.2) against 395 x 395 x 75 mm (5.27);
 # 5 mm of shear is the paper's 20 % average shear strain

@@ -22,13 +22,13 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from . import ROOT, LaunchError, lammps
-from .presets import DECOMPOSITIONS, ESTIMATE
+from .presets import COMPRESS_SHARED, DECOMPOSITIONS, ESTIMATE, Run
 
 sys.path.insert(0, str(ROOT / "postprocess"))
 from tbagspost.run import log_timestep  # noqa: E402  (the reader of the decks' TIMESTEP line)
 
 # the lines of a stage's screen output that the launcher repeats (the decks' summaries)
-SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
+SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSION PART|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
 MARKER = ".tbags-run"    # in every output folder the launcher made (so --out never clears a user's)
 
 
@@ -182,6 +182,22 @@ def run_variables(preset, run, user):
     return variables
 
 
+def shared_compression(preset, user, engine):
+    """The run that makes the compression's shared part (folder "compress", the smallest load,
+    -var compress_to: COMPRESS_SHARED or the user's fraction, 0 for none), when the preset's runs
+    differ only in their load (Fpaper) and compress fresh in LAMMPS; else None."""
+    runs = preset.runs
+    fraction = float(user.get("compress_to", COMPRESS_SHARED))
+    if engine != "lammps" or len(runs) < 2 or len({r.deck for r in runs}) > 1 or fraction <= 0 or \
+            {"restart", "compress_from"} & set(user):
+        return None
+    rest = [{k: v for k, v in r.variables.items() if k != "Fpaper"} for r in runs]
+    if any(x != rest[0] for x in rest) or any("Fpaper" not in r.variables for r in runs):
+        return None
+    lightest = min(runs, key=lambda r: r.variables["Fpaper"])
+    return Run("compress", lightest.deck, dict(lightest.variables, compress_to=fraction))
+
+
 def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False,
                engine="lammps"):
     """One realization of a preset into `out`; user: the -var values given (they win); engine:
@@ -202,10 +218,19 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
 
+    # the loads' common start of compression, run once (each load continues from its checkpoint)
+    part = shared_compression(preset, user, engine)
+    each_user = user
+    if part:
+        stage_once(run_folder(out, part), part.deck, ranks, run_variables(preset, part, user), say,
+                   "compress.restart")
+        each_user = {k: v for k, v in user.items() if k != "compress_to"}    # the part's only
+        each_user["compress_from"] = "../compress/compress.restart"
+
     def job(run, r):
         if engine == "liggghts":
             return lambda s: stage_liggghts(run_folder(out, run), r, run_variables(preset, run, user), s)
-        return lambda s: stage(run_folder(out, run), run.deck, r, run_variables(preset, run, user), s)
+        return lambda s: stage(run_folder(out, run), run.deck, r, run_variables(preset, run, each_user), s)
 
     if preset.side_by_side and len(preset.runs) > 1:
         each = max(1, ranks // len(preset.runs))

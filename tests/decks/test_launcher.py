@@ -44,3 +44,32 @@ def test_paths_with_spaces(tmp_path):
     assert (out / "shear.csv").is_file() and (out / "figures" / "shear.png").is_file()
     link = next((tmp_path / "cache").glob("repo-*"))
     assert link.resolve() == repo.resolve() and " " not in str(link)
+
+
+def test_loads_share_one_compression(tmp_path):
+    """A preset of three loads on one fill (as trends, paper and cyclic): the launcher compresses
+    once to 0.9 of the smallest load (compress/), then each load continues from that checkpoint to
+    its own F_v, side by side, and the figures are made from the three runs."""
+    import re
+    from tbagsrun import shear
+    from tbagsrun.presets import LOADS, Preset, per_load
+    preset = Preset("loads", "loads", lmprun.TINY_BAG, per_load("shear", v=0.02, ufinal=0.0003), True, "figures")
+    said = []
+    shear.run_preset(preset, 2, tmp_path / "out", {}, said.append)
+    text = "\n".join(said)
+    print(text)
+    out = tmp_path / "out"
+    assert (out / "compress" / "compress.restart").is_file()
+    part = [line for line in said if "COMPRESSION PART" in line]
+    assert len(part) == 1 and "(0.9 of %s" % ("%.14g" % (1960 * 7 * 7 / 79 ** 2))[:8] in part[0]
+    n_part = int(re.search(r"after (\d+) steps", part[0]).group(1))
+    for f in LOADS:
+        log = (out / ("F%d" % f) / "log.shear").read_text()
+        assert "read_restart    ../compress/compress.restart" in log
+        fv, target = map(float, re.search(r"^COMPRESSED: F_v (\S+) N \(target (\S+)\)", log, re.M).groups())
+        assert abs(target - f * 7 * 7 / 79 ** 2) < 1e-9 and abs(fv - target) < 0.005 * target
+        # the rest of the compression only
+        rest = int(re.search(r"^Loop time of \S+ on \d+ procs for (\d+) steps", log, re.M).group(1))
+        assert 0 < rest < n_part
+        assert "SHEARED: u 0.300 mm" in log
+    assert (out / "F1960" / "figures" / "shear.png").is_file()

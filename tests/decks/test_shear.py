@@ -78,6 +78,70 @@ def test_resume_from_checkpoint(filled, tmp_path):
     assert "SHEARED: u 0.600 mm" in res.output
 
 
+def test_loads_share_the_start_of_their_compression(filled, tmp_path):
+    """-var compress_to 0.9 at the smallest load compresses to 0.9 F_v and checkpoints; a run at a
+    larger load continues from it (-var compress_from) as if it had compressed from the start:
+    the plate runs at its speed limit until the force nears the target, so the same steps for
+    every load. Against the straight run at that load: the same total of compression steps (to
+    the 1,000 of the convergence check), the plate at the same depth, the target reached (not the
+    checkpoint's), then the first rows of shear within 0.5 % of the S range (the restart's fresh
+    force evaluation, then chaos: 10 % for all rows, as in test_resume_from_checkpoint)."""
+    import re
+    import shutil
+
+    def steps(log):
+        return [int(n) for n in re.findall(r"^Loop time of \S+ on \d+ procs for (\d+) steps", log, re.M)]
+
+    v = dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.001, du_csv=2e-5)
+    out = {}
+    for name, extra in (("straight", dict(Fpaper=5500)), ("part", dict(Fpaper=1960, compress_to=0.9)),
+                        ("rest", dict(Fpaper=5500, compress_from="../part/compress.restart"))):
+        wd = tmp_path / name
+        wd.mkdir()
+        shutil.copy(filled / "fill.data", wd)
+        out[name] = lmprun.run(INPUTS / "in.shear", wd, variables=dict(v, **extra)).check()
+    part = re.search(r"COMPRESSION PART: F_v (\S+) N \(0.9 of (\S+) N\)", out["part"].output)
+    assert part and float(part.group(1)) >= 0.9 * float(part.group(2))
+    assert (tmp_path / "part" / "compress.restart").is_file() and not (tmp_path / "part" / "shear.csv").exists()
+    comp = {}
+    for name in ("straight", "rest"):
+        line = re.search(r"COMPRESSED: F_v (\S+) N \(target (\S+)\), w (\S+) mm", out[name].output)
+        comp[name] = [float(x) for x in line.groups()]
+        assert abs(comp[name][0] - comp[name][1]) < 0.005 * comp[name][1]
+    n_straight = steps((tmp_path / "straight" / "log.lammps").read_text())[0]
+    n_part, n_rest = steps((tmp_path / "part" / "log.lammps").read_text())[0], \
+        steps((tmp_path / "rest" / "log.lammps").read_text())[0]
+    print("compression steps: straight %d, shared part %d + rest %d; COMPRESSED %s" % (
+        n_straight, n_part, n_rest, comp))
+    assert comp["rest"][1] == comp["straight"][1] and abs(comp["rest"][2] - comp["straight"][2]) < 1e-3
+    assert abs(n_part + n_rest - n_straight) <= 1000 and n_part > 0.5 * n_straight
+    a, b = (np.genfromtxt(tmp_path / n / "shear.csv", delimiter=",", names=True) for n in ("straight", "rest"))
+    span = a["S_N"].max() - a["S_N"].min()
+    print("|dS| %s N (S range %.1f N)" % (np.round(np.abs(a["S_N"] - b["S_N"]), 3), span))
+    assert len(a) == len(b) == 11 and np.allclose(a["u_mm"], b["u_mm"], atol=1e-4)
+    assert np.abs(a["S_N"][:3] - b["S_N"][:3]).max() < 0.005 * span
+    assert np.abs(a["S_N"] - b["S_N"]).max() < 0.10 * span
+
+
+@pytest.mark.parametrize("var,message", [
+    ({"compress_from": "nothere.restart"}, "no compression checkpoint nothere.restart"),
+    ({"compress_to": 0.99}, "compress_to must be below 0.98"),
+    ({"compress_to": 0.5, "compress_from": "x"}, "compress_to and compress_from exclude each other")])
+def test_bad_shared_compression(filled, tmp_path, var, message):
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, fill=filled / "fill.data", **var))
+    assert res.returncode != 0 and message in res.output
+
+
+def test_shared_part_past_a_smaller_load_is_refused(filled, tmp_path):
+    """A checkpoint made past the force where a smaller load's servo slows down would give that
+    load another compression than its own: refused."""
+    import shutil
+    shutil.copy(filled / "fill.data", tmp_path)
+    lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, Fpaper=5500, compress_to=0.5)).check()
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, Fpaper=1960, compress_from="compress.restart"))
+    assert res.returncode != 0 and "where this run (F_v" in res.output and "slows down" in res.output
+
+
 @pytest.mark.parametrize("damping", ["explicit", "implicit"])
 def test_same_on_one_and_two_ranks(filled, tmp_path, damping):
     """The whole shear stage (compression and the first 0.2 mm of shear) on 1 and 2 ranks gives

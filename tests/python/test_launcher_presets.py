@@ -9,8 +9,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "launcher"))
 from tbagsrun import LaunchError  # noqa: E402
-from tbagsrun.presets import LOADS, PRESETS, Run  # noqa: E402
-from tbagsrun.shear import means_to_csv, run_variables  # noqa: E402
+from tbagsrun.presets import COMPRESS_SHARED, LOADS, PRESETS, Run  # noqa: E402
+from tbagsrun.shear import means_to_csv, run_variables, shared_compression  # noqa: E402
 from tbagspost.run import read_csv  # noqa: E402
 from tbagsrun.cli import parse, usage  # noqa: E402
 
@@ -34,6 +34,22 @@ def test_user_variables_win_and_subfolder_runs_read_the_fill_above():
     demo = PRESETS["demo"]
     assert "fill" not in run_variables(demo, demo.runs[0], {})
     assert run_variables(demo, Run("", "shear", {"v": 1}), {})["v"] == 1
+
+
+def test_loads_of_one_fill_share_their_compression():
+    """Runs that differ only in their load compress once to the shared fraction of the smallest
+    (folder compress); runs that differ otherwise, one run, LIGGGHTS and resumed runs do not."""
+    for name in ("trends", "paper", "cyclic"):
+        part = shared_compression(PRESETS[name], {}, "lammps")
+        assert part.folder == "compress" and part.deck == PRESETS[name].runs[0].deck, name
+        assert part.variables["Fpaper"] == min(LOADS) and part.variables["compress_to"] == COMPRESS_SHARED
+        assert 0 < COMPRESS_SHARED < 0.98    # below it, every load's servo runs at its speed limit
+        assert shared_compression(PRESETS[name], {}, "liggghts") is None
+        assert shared_compression(PRESETS[name], {"restart": "x"}, "lammps") is None
+        assert shared_compression(PRESETS[name], {"compress_to": "0"}, "lammps") is None
+        assert shared_compression(PRESETS[name], {"compress_to": "0.5"}, "lammps").variables["compress_to"] == 0.5
+    for name in ("demo", "quasistatic", "stack"):
+        assert shared_compression(PRESETS[name], {}, "lammps") is None, name
 
 
 def test_parse_options_variables_and_seed():

@@ -63,6 +63,27 @@ def test_projection_by_hand(tmp_path):
     assert "* extrapolated" in text and "97130" not in text and "115052 particles" in text
 
 
+def test_shared_compression_counted_once(tmp_path):
+    """The compression's thermo rows give the steps before the force reaches the shared fraction
+    of the smallest load (on the demo bag's plan): run once, not per load."""
+    est = make(tmp_path)
+    log = est / "state" / "log.shear"
+    lightest = 1960 * 19 * 19 / 79 ** 2
+    rows = "".join("%8d %g %.6f -0.001 0 0 100\n" % (k * 2000, k * 0.003, f * lightest)
+                   for k, f in enumerate([0, 0, 0.2, 0.5, 0.85, 0.89, 0.91, 1.2, 3.0]))
+    head = "   Step Time v_Fmeas v_w f_top[9] v_conv CPULeft\n"
+    log.write_text(log.read_text().replace("Loop time of 50", head + rows + "Loop time of 50", 1))
+    assert pt.shared_steps(log, 0.9 * lightest) == 10000
+    r = pt.project(est, ranks=2)
+    assert r["shared"] == 10000 and r["shared_paper"] == 30000
+    steps_load = (39000 - 10000) * 15 / 5 + 0.015 / (0.004 * 2e-6)
+    row = {p: row for p, *row in r["rows"]}[2]
+    assert row[2] == pytest.approx((60000 + 30000) * (17922 + 97130) * 0.6e-6 / 3600)
+    assert row[3] == pytest.approx(steps_load * (17922 + 97130) * 0.6e-6 / 3600)
+    assert pt.total_steps(r) == 60000 + 30000 + 3 * steps_load
+    assert "30000 shared by the loads" in pt.report(r)
+
+
 def test_missing_and_truncated(tmp_path):
     with pytest.raises(SystemExit, match="no bag.json and no BAG line"):
         pt.project(tmp_path / "estimate", 1)
