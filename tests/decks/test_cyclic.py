@@ -193,3 +193,20 @@ def test_resume_needs_start(cycled, tmp_path):
     shutil.copy(wd / "cyclic.restart.a1", tmp_path)
     res = lmprun.run(INPUTS / "in.cyclic", tmp_path, variables=dict(PROTOCOL, restart="cyclic.restart.a1"))
     assert res.returncode != 0 and "a resumed run needs -var start K+1" in res.output
+
+
+def test_cycles_after_the_shared_compression(cycled, tmp_path):
+    """in.cyclic shares the compression as in.shear (between_plates.lmp): a part made at 1.96 kN's
+    stress, continued at 5.50 kN's, reaches its own F_v (not the part's) and cycles with it held."""
+    import re
+    wd, _ = cycled
+    shutil.copy(wd / "fill.keep", tmp_path / "fill.data")
+    v = dict(SIZE, amps="0.25", cycles=1, vpeak=0.03)
+    part = lmprun.run(INPUTS / "in.cyclic", tmp_path, variables=dict(v, Fpaper=1960, compress_to=0.9)).check()
+    assert "COMPRESSION PART" in part.output and not (tmp_path / "cyclic.csv").exists()
+    res = lmprun.run(INPUTS / "in.cyclic", tmp_path, variables=dict(v, Fpaper=5500, compress_from="compress.restart")).check()
+    fv, target = map(float, re.search(r"^COMPRESSED: F_v (\S+) N \(target (\S+)\)", res.output, re.M).groups())
+    d = cyclic.read_csv(tmp_path / "cyclic.csv")
+    print("COMPRESSED %.2f N (target %.2f); cycled F_v mean %.2f N" % (fv, target, d["Fv_N"][1:].mean()))
+    assert target == pytest.approx(5500 * 7 * 7 / 79 ** 2) and abs(fv - target) < 0.005 * target
+    assert abs(d["Fv_N"][1:].mean() - target) < 0.01 * target and "CYCLED" in res.output
