@@ -14,12 +14,14 @@ paper's bag itself, the factor is 1). Assumptions, printed with the table: the f
 per particle-step than shearing (its grains grow from half size); compression takes the measured
 number of steps (times the ratio of sand heights on a smaller bag), of which the loads share those
 before the force first reaches the shared fraction of the smallest load (./tbags shear runs that
-part once, launcher/tbagsrun/presets.py COMPRESS_SHARED; read from the checkpoint's thermo output,
-every 2,000 steps, the last row below it); shearing takes u_final / (v dt) steps per load (dt of
-the measured run).
+part once, launcher/tbagsrun/presets.py COMPRESS_SHARED: the part's own steps, compress/log.shear
+beside the estimate, when the checkpoint continued from it; else from the checkpoint's thermo
+output, every 2,000 steps, the last row below it); shearing takes u_final / (v dt) steps per load
+(dt of the measured run).
 """
 import argparse
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -118,7 +120,16 @@ def project(est_dir, ranks):
     fill_log = next((f for f in (est_dir / "log.fill", est_dir.parent / "log.fill") if f.is_file()),
                     est_dir.parent / "log.fill")
     fill_steps = sum(x["steps"] for x in runs(fill_log))
-    comp_steps = runs(est_dir / "state" / "log.shear")[0]["steps"]
+    state_log = est_dir / "state" / "log.shear"
+    comp_steps = runs(state_log)[0]["steps"]
+    part_log = est_dir.parent / "compress" / "log.shear"
+    continued = re.search(r"^read_restart\s+\S*compress\.restart\s*$", state_log.read_text(errors="replace"), re.M)
+    if continued:    # the checkpoint's compression continued from the loads' shared part
+        if not part_log.is_file():
+            raise SystemExit("project_time: %s continued from a shared part, but there is no %s"
+                             % (state_log, part_log))
+        shared = runs(part_log)[0]["steps"]
+        comp_steps += shared
     dt = timestep(est_dir / "state" / "log.shear")
     timed = measured(est_dir)
     cost = {p: wall_per_step(xs) / xs[0]["atoms"] for p, xs in timed.items()}
@@ -127,7 +138,8 @@ def project(est_dir, ranks):
     comp_paper = comp_steps * height
     # the part every load shares: to the shared fraction of the smallest load (on this bag's plan)
     lightest = min(PAPER["loads"]) * (nx - 2) * (ny - 2) / (PAPER["nx"] - 2) / (PAPER["ny"] - 2)
-    shared = min(shared_steps(est_dir / "state" / "log.shear", COMPRESS_SHARED * lightest), comp_steps)
+    if not continued:
+        shared = min(shared_steps(state_log, COMPRESS_SHARED * lightest), comp_steps)
     shared_paper = shared * height
     shear_steps = PAPER["ufinal"] / (PAPER["v"] * dt)
     steps_per_load = comp_paper - shared_paper + shear_steps

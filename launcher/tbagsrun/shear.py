@@ -205,9 +205,14 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     t0 = time.time()
     out = Path(out)
     fill_vars = dict(preset.bag, **user)
+    # the loads' common start of compression, run once (each load continues from its checkpoint;
+    # the paper's estimate makes it first and continues its own checkpoint from it too)
+    part = shared_compression(preset, user, engine)
+    part_stage = part and (run_folder(out, part), part.deck, ranks, run_variables(preset, part, user), say,
+                           "compress.restart")
     if preset.estimate:
         out.mkdir(parents=True, exist_ok=True)
-        estimate_paper(out, fill_vars, ranks, say)
+        estimate_paper(out, fill_vars, ranks, say, part_stage)
         if estimate_only:
             return
     else:
@@ -217,13 +222,9 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
             say("tbags shear %s: %s" % (preset.name, line))
     stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
-
-    # the loads' common start of compression, run once (each load continues from its checkpoint)
-    part = shared_compression(preset, user, engine)
     each_user = user
     if part:
-        stage_once(run_folder(out, part), part.deck, ranks, run_variables(preset, part, user), say,
-                   "compress.restart")
+        stage_once(*part_stage)
         each_user = {k: v for k, v in user.items() if k != "compress_to"}    # the part's only
         each_user["compress_from"] = "../compress/compress.restart"
 
@@ -353,10 +354,11 @@ def stage_once(folder, deck, ranks, variables, say, product):
     stamp.write_text(key)
 
 
-def estimate_paper(out, fill_vars, ranks, say):
+def estimate_paper(out, fill_vars, ranks, say, part=None):
     """The paper run's cost measured on its own bag (fill_vars: its size and the user's -var
-    values): the bag and its fill (the run's own, in out),
-    compression and a short shear to a checkpoint (estimate/state), each made once; then a short
+    values): the bag and its fill (the run's own, in out), the loads' shared part of the
+    compression (part: stage_once's arguments, in out/compress; the run's loads reuse it), the
+    rest of the compression and a short shear to a checkpoint (estimate/state), each made once; then a short
     stretch resumed from the checkpoint at 1, 2 and `ranks` ranks (estimate/np<P>) and a few steps
     at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
     scaling model); then the projection (inputs/project_time.py)."""
@@ -366,8 +368,11 @@ def estimate_paper(out, fill_vars, ranks, say):
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
     e = ESTIMATE
     shear = dict(fill_vars, v=e["v"], du_csv=e["du_csv"])
-    stage_once(folder / "state", "shear", ranks, dict(shear, fill="../../fill.data", ufinal=e["u_state"],
-                                                      du_dump=e["u_state"], state=1), say, "state.data")
+    state = dict(shear, fill="../../fill.data", ufinal=e["u_state"], du_dump=e["u_state"], state=1)
+    if part:
+        stage_once(*part)
+        state["compress_from"] = "../../compress/compress.restart"
+    stage_once(folder / "state", "shear", ranks, state, say, "state.data")
     restart = max((folder / "state").glob("shear.restart.*"), key=lambda f: f.stat().st_mtime).name
     timed = round(e["u_timed"] / (e["v"] * float(log_timestep(folder / "state" / "log.shear"))))
     say("tbags shear paper: timing %d shear steps of the paper bag at %s rank(s) ..."

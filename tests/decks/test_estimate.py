@@ -21,3 +21,28 @@ def test_estimate_on_the_tiny_bag(tmp_path, monkeypatch):
     said.clear()
     shear.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, said.append)
     assert sum("done before, reused" in line for line in said) == 3
+
+
+def test_estimate_makes_the_shared_part_that_the_run_reuses(tmp_path, monkeypatch):
+    """`./tbags shear paper --estimate` compresses through the loads' shared part (compress/, the
+    smallest load to 0.9 of its F_v) and continues its checkpoint from it; the projection counts
+    the part's own steps once; the full run would reuse the part (stage_once's stamp)."""
+    import re
+    from tbagsrun.presets import PRESETS
+    monkeypatch.setattr(shear, "ESTIMATE", dict(v=0.004, du_csv=2e-6, du_dump=4e-6, u_state=4e-6, u_timed=2e-6))
+    monkeypatch.setattr(shear, "DECOMPOSITIONS", ())
+    said = []
+    shear.run_preset(PRESETS["paper"], 2, tmp_path, dict(lmprun.TINY_BAG), said.append, estimate_only=True)
+    part = next(line for line in said if "COMPRESSION PART" in line)
+    n_part = int(re.search(r"after (\d+) steps", part).group(1))
+    state = (tmp_path / "estimate" / "state" / "log.shear").read_text()
+    assert "read_restart    ../../compress/compress.restart" in state and "(0.9 of 15.3885" in part
+    text = (tmp_path / "estimate" / "projection.txt").read_text()
+    print(part, text.splitlines()[1], sep="\n")
+    assert "of which %d shared by the loads" % round(n_part * 15 / 3) in text
+    part_stage = (tmp_path / "compress", "shear", 2, shear.run_variables(
+        PRESETS["paper"], shear.shared_compression(PRESETS["paper"], {}, "lammps"), dict(lmprun.TINY_BAG)),
+        said.append, "compress.restart")
+    said.clear()
+    shear.stage_once(*part_stage)
+    assert said == ["tbags shear: shear in %s: done before, reused" % (tmp_path / "compress")]

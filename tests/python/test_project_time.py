@@ -84,6 +84,22 @@ def test_shared_compression_counted_once(tmp_path):
     assert "30000 shared by the loads" in pt.report(r)
 
 
+def test_shared_part_counted_from_its_own_log(tmp_path):
+    """A checkpoint whose compression continued from the loads' shared part (./tbags shear paper):
+    the part's own steps (compress/log.shear beside the estimate) are the shared ones, and the
+    compression is the part plus the checkpoint's first run; without the part's log, a clear stop."""
+    est = make(tmp_path)
+    log = est / "state" / "log.shear"
+    log.write_text("read_restart    ../../compress/compress.restart\n" + log.read_text())
+    with pytest.raises(SystemExit, match="continued from a shared part, but there is no"):
+        pt.project(est, ranks=2)
+    (tmp_path / "compress").mkdir()
+    (tmp_path / "compress" / "log.shear").write_text(LOOP % (40, 2, 30000, 3156))
+    r = pt.project(est, ranks=2)
+    assert r["comp_steps"] == 69000 and r["shared"] == 30000 and r["shared_paper"] == 90000
+    assert pt.total_steps(r) == 60000 + 90000 + 3 * (39000 * 3 + 0.015 / (0.004 * 2e-6))
+
+
 def test_missing_and_truncated(tmp_path):
     with pytest.raises(SystemExit, match="no bag.json and no BAG line"):
         pt.project(tmp_path / "estimate", 1)
