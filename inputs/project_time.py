@@ -82,6 +82,24 @@ def shared_steps(log, force):
     return below
 
 
+def compression(est_dir, nx, ny):
+    """(steps of the estimate's compression, of which the loads share): the shared part's own run
+    (compress/log.shear beside the estimate) when the checkpoint continued from it, else the
+    checkpoint's steps before its force reached the shared fraction of the smallest load (scaled
+    to this bag's plan)."""
+    state_log = est_dir / "state" / "log.shear"
+    steps = runs(state_log)[0]["steps"]
+    if re.search(r"^read_restart\s+\S*compress\.restart\s*$", state_log.read_text(errors="replace"), re.M):
+        part_log = est_dir.parent / "compress" / "log.shear"
+        if not part_log.is_file():
+            raise SystemExit("project_time: %s continued from a shared part, but there is no %s"
+                             % (state_log, part_log))
+        shared = runs(part_log)[0]["steps"]
+        return steps + shared, shared
+    lightest = min(PAPER["loads"]) * (nx - 2) * (ny - 2) / (PAPER["nx"] - 2) / (PAPER["ny"] - 2)
+    return steps, min(shared_steps(state_log, COMPRESS_SHARED * lightest), steps)
+
+
 def bag_particles(nx, ny, nz):
     return nx * ny * nz - (nx - 2) * (ny - 2) * (nz - 2)
 
@@ -120,26 +138,13 @@ def project(est_dir, ranks):
     fill_log = next((f for f in (est_dir / "log.fill", est_dir.parent / "log.fill") if f.is_file()),
                     est_dir.parent / "log.fill")
     fill_steps = sum(x["steps"] for x in runs(fill_log))
-    state_log = est_dir / "state" / "log.shear"
-    comp_steps = runs(state_log)[0]["steps"]
-    part_log = est_dir.parent / "compress" / "log.shear"
-    continued = re.search(r"^read_restart\s+\S*compress\.restart\s*$", state_log.read_text(errors="replace"), re.M)
-    if continued:    # the checkpoint's compression continued from the loads' shared part
-        if not part_log.is_file():
-            raise SystemExit("project_time: %s continued from a shared part, but there is no %s"
-                             % (state_log, part_log))
-        shared = runs(part_log)[0]["steps"]
-        comp_steps += shared
+    comp_steps, shared = compression(est_dir, nx, ny)
     dt = timestep(est_dir / "state" / "log.shear")
     timed = measured(est_dir)
     cost = {p: wall_per_step(xs) / xs[0]["atoms"] for p, xs in timed.items()}
     atoms = bag_particles(PAPER["nx"], PAPER["ny"], PAPER["nz"]) + sand_grains(PAPER["nx"], PAPER["ny"], PAPER["nz"])
     height = (PAPER["nz"] - 2) / (nz - 2)
     comp_paper = comp_steps * height
-    # the part every load shares: to the shared fraction of the smallest load (on this bag's plan)
-    lightest = min(PAPER["loads"]) * (nx - 2) * (ny - 2) / (PAPER["nx"] - 2) / (PAPER["ny"] - 2)
-    if not continued:
-        shared = min(shared_steps(state_log, COMPRESS_SHARED * lightest), comp_steps)
     shared_paper = shared * height
     shear_steps = PAPER["ufinal"] / (PAPER["v"] * dt)
     steps_per_load = comp_paper - shared_paper + shear_steps
