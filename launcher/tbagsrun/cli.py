@@ -16,6 +16,9 @@ USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (
 Bag (inputs/in.bag), fill (in.fill), simple shear (in.shear), then figures. -var values override
 the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufinal, dt, seed...).
 --out DIR: write there instead of runs/<preset>/ (runs/shear-demo/ for demo).
+Presets of several loads (trends, cyclic, paper) compress once to 0.9 of the smallest load's F_v
+(in compress/) and continue each load from there (-var compress_to P sets the fraction, 0: each
+load compresses by itself).
 --realizations N: N fills of different seeds (seed, seed + 1, ...; -var seed S sets the first,
 default 4821), each with the preset's shear runs, side by side where cores allow, in
 runs/<preset>/r1 ... rN; then the mean curves with their spread and the table of peak S, S at
