@@ -224,9 +224,8 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
     each_user = user
     if part:
-        stage_once(*part_stage)
         each_user = {k: v for k, v in user.items() if k != "compress_to"}    # the part's only
-        each_user["compress_from"] = "../compress/compress.restart"
+        each_user["compress_from"] = made_part(part_stage, run_folder(out, preset.runs[0]))
 
     def job(run, r):
         if engine == "liggghts":
@@ -354,6 +353,13 @@ def stage_once(folder, deck, ranks, variables, say, product):
     stamp.write_text(key)
 
 
+def made_part(part_stage, where):
+    """The loads' shared part of the compression made once (stage_once's arguments, part_stage);
+    its checkpoint's path from the folder `where` (a run's, for -var compress_from)."""
+    stage_once(*part_stage)
+    return os.path.relpath(Path(part_stage[0]) / part_stage[-1], where)
+
+
 def estimate_paper(out, fill_vars, ranks, say, part=None):
     """The paper run's cost measured on its own bag (fill_vars: its size and the user's -var
     values): the bag and its fill (the run's own, in out), the loads' shared part of the
@@ -370,8 +376,7 @@ def estimate_paper(out, fill_vars, ranks, say, part=None):
     shear = dict(fill_vars, v=e["v"], du_csv=e["du_csv"])
     state = dict(shear, fill="../../fill.data", ufinal=e["u_state"], du_dump=e["u_state"], state=1)
     if part:
-        stage_once(*part)
-        state["compress_from"] = "../../compress/compress.restart"
+        state["compress_from"] = made_part(part, folder / "state")
     stage_once(folder / "state", "shear", ranks, state, say, "state.data")
     restart = max((folder / "state").glob("shear.restart.*"), key=lambda f: f.stat().st_mtime).name
     timed = round(e["u_timed"] / (e["v"] * float(log_timestep(folder / "state" / "log.shear"))))

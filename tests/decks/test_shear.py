@@ -88,9 +88,9 @@ def test_loads_share_the_start_of_their_compression(filled, tmp_path):
     force evaluation, then chaos: 10 % for all rows, as in test_resume_from_checkpoint)."""
     import re
     import shutil
-
-    def steps(log):
-        return [int(n) for n in re.findall(r"^Loop time of \S+ on \d+ procs for (\d+) steps", log, re.M)]
+    import sys
+    sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
+    from tbagspost.run import loops
 
     v = dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.001, du_csv=2e-5)
     out = {}
@@ -108,9 +108,8 @@ def test_loads_share_the_start_of_their_compression(filled, tmp_path):
         line = re.search(r"COMPRESSED: F_v (\S+) N \(target (\S+)\), w (\S+) mm", out[name].output)
         comp[name] = [float(x) for x in line.groups()]
         assert abs(comp[name][0] - comp[name][1]) < 0.005 * comp[name][1]
-    n_straight = steps((tmp_path / "straight" / "log.lammps").read_text())[0]
-    n_part, n_rest = steps((tmp_path / "part" / "log.lammps").read_text())[0], \
-        steps((tmp_path / "rest" / "log.lammps").read_text())[0]
+    n_straight, n_part, n_rest = (loops((tmp_path / n / "log.lammps").read_text())[0]["steps"]
+                                  for n in ("straight", "part", "rest"))
     print("compression steps: straight %d, shared part %d + rest %d; COMPRESSED %s" % (
         n_straight, n_part, n_rest, comp))
     assert comp["rest"][1] == comp["straight"][1] and abs(comp["rest"][2] - comp["straight"][2]) < 1e-3
