@@ -12,10 +12,14 @@ from .presets import PRESETS
 from .shear import run_preset, run_realizations
 
 USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)]
-                    [--engine lammps|liggghts] [-var name value ...]
+                    [--resume] [--engine lammps|liggghts] [-var name value ...]
 Bag (inputs/in.bag), fill (in.fill), simple shear (in.shear), then figures. -var values override
 the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufinal, dt, seed...).
 --out DIR: write there instead of runs/<preset>/ (runs/shear-demo/ for demo).
+--resume: continue an interrupted call with the same preset, -var values and --out: its bag,
+fill and shared compression are reused, a run that finished is kept, and a run with a checkpoint
+continues from it (in.shear's shear.restart.1/2, the newer one; in.cyclic's cyclic.restart.aK at
+amplitude K + 1), its CSV keeping the rows up to the checkpoint; a run with neither starts again.
 Presets of several loads (trends, cyclic, paper) compress once to 0.9 of the smallest load's F_v
 (in compress/) and continue each load from there (-var compress_to P sets the fraction, 0: each
 load compresses by itself).
@@ -47,7 +51,7 @@ def positive(option, text, what="a positive number"):
 
 def parse(argv):
     """-> preset, ranks, out, realizations, estimate_only, seed, variables, extra LAMMPS args,
-    engine."""
+    engine, resume."""
     args = list(argv)
     preset = PRESETS["demo"]
     if args and not args[0].startswith("-"):
@@ -57,7 +61,7 @@ def parse(argv):
                               % (name, ", ".join(PRESETS)))
         preset = PRESETS[name]
     ranks, out, nreal, estimate, seed = len(os.sched_getaffinity(0)), None, 1, False, 4821
-    engine = "lammps"
+    engine, resume = "lammps", False
     variables, extra = {}, []
     while args:
         a = args.pop(0)
@@ -65,6 +69,8 @@ def parse(argv):
             if not preset.estimate:
                 raise LaunchError("shear: --estimate is for the paper preset")
             estimate = True
+        elif a == "--resume":
+            resume = True
         elif a == "--engine":
             engine = args.pop(0) if args else ""
             if engine not in ("lammps", "liggghts"):
@@ -102,7 +108,10 @@ def parse(argv):
     if engine == "liggghts" and (preset.estimate or any(r.deck != "shear" for r in preset.runs)):
         raise LaunchError("shear: --engine liggghts runs the shear test only (presets demo, trends, "
                           "quasistatic); LIGGGHTS has no decks for %s yet" % preset.name)
-    return preset, ranks, out, nreal, estimate, seed, variables, extra, engine
+    if resume and (engine != "lammps" or estimate):
+        raise LaunchError("shear: --resume continues LAMMPS runs of a preset (not with --engine "
+                          "liggghts or --estimate)")
+    return preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume
 
 
 def set_up():
@@ -121,7 +130,7 @@ def shear(argv):
     if argv and argv[0] in ("--help", "-h", "help"):
         print(usage())
         return
-    preset, ranks, out, nreal, estimate, seed, variables, extra, engine = parse(argv)
+    preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume = parse(argv)
     if extra:
         raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(extra))
     out = out or ROOT / "runs" / (preset.folder + ("-liggghts" if engine == "liggghts" else ""))
@@ -130,10 +139,10 @@ def shear(argv):
     def say(line):
         print(line, flush=True)
     if nreal > 1:
-        run_realizations(preset, nreal, seed, ranks, out, variables, say, engine)
+        run_realizations(preset, nreal, seed, ranks, out, variables, say, engine, resume)
     else:
         run_preset(preset, ranks, out, dict(variables, seed=seed), say, estimate_only=estimate,
-                   engine=engine)
+                   engine=engine, resume=resume)
 
 
 def main(argv):

@@ -21,7 +21,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from . import ROOT, LaunchError, lammps
+from . import ROOT, LaunchError, lammps, resume as resumed
 from .presets import COMPRESS_SHARED, DECOMPOSITIONS, ESTIMATE, Run
 
 sys.path.insert(0, str(ROOT / "postprocess"))
@@ -199,9 +199,10 @@ def shared_compression(preset, user, engine):
 
 
 def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False,
-               engine="lammps"):
+               engine="lammps", resume=False):
     """One realization of a preset into `out`; user: the -var values given (they win); engine:
-    where the shear runs go (the bag and the fill are LAMMPS's)."""
+    where the shear runs go (the bag and the fill are LAMMPS's); resume: continue the runs of an
+    earlier call in `out` (stage_run), its bag, fill and shared compression reused."""
     t0 = time.time()
     out = Path(out)
     fill_vars = dict(preset.bag, **user)
@@ -212,16 +213,17 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
                            "compress.restart")
     if preset.estimate:
         out.mkdir(parents=True, exist_ok=True)
-        estimate_paper(out, fill_vars, ranks, say, part_stage)
+        estimate_paper(out, fill_vars, ranks, say, part_stage, resume and not estimate_only)
         if estimate_only:
             return
-    else:
+    elif not (resume and (out / MARKER).is_file()):
         fresh_dir(out)
     for name, line in preset.defaults_said.items():
         if name not in user:
             say("tbags shear %s: %s" % (preset.name, line))
     stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
+    origin = (out / ".fill.vars").read_text()    # the fill's variables (a run resumes on the same fill)
     each_user = user
     if part:
         each_user = {k: v for k, v in user.items() if k != "compress_to"}    # the part's only
@@ -230,7 +232,8 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     def job(run, r):
         if engine == "liggghts":
             return lambda s: stage_liggghts(run_folder(out, run), r, run_variables(preset, run, user), s)
-        return lambda s: stage(run_folder(out, run), run.deck, r, run_variables(preset, run, each_user), s)
+        return lambda s: stage_run(run_folder(out, run), run.deck, r, run_variables(preset, run, each_user), s,
+                                   resume, origin)
 
     if preset.side_by_side and len(preset.runs) > 1:
         each = max(1, ranks // len(preset.runs))
@@ -291,12 +294,14 @@ def check(preset, out, say, in_realizations):
             raise LaunchError("trends: a finding did not hold (above)")
 
 
-def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps"):
+def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps", resume=False):
     """n realizations of a preset (fills of seeds seed, seed + 1, ...) in out/r1 ... out/rn, as
-    many at once as the cores allow, then their spread in out/realizations."""
+    many at once as the cores allow, then their spread in out/realizations; resume: as
+    run_preset's, in each."""
     t0 = time.time()
     out = Path(out)
-    fresh_dir(out)
+    if not (resume and (out / MARKER).is_file()):
+        fresh_dir(out)
     per = len(preset.runs) if preset.side_by_side else 1    # runs of one realization at once
     slots = min(max(1, ranks // per), n)
     each = max(1, ranks // slots)
@@ -309,7 +314,7 @@ def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps"):
                 print(line, file=log, flush=True)
             try:
                 run_preset(preset, each, out / ("r%d" % k), dict(user, seed=seed + k - 1), say_k,
-                           in_realizations=True, engine=engine)
+                           in_realizations=True, engine=engine, resume=resume)
             except LaunchError as e:
                 say_k("tbags: %s" % e)
                 return False
@@ -344,13 +349,51 @@ def stage_once(folder, deck, ranks, variables, say, product):
     """stage(), unless an earlier call made `product` in folder with the same variables (a stamp
     beside it), so that a long stage that finished is not run again."""
     stamp = Path(folder) / (".%s.vars" % deck)
-    key = json.dumps({k: str(v) for k, v in variables.items()}, sort_keys=True)
+    key = vars_key(variables)
     if (Path(folder) / product).is_file() and stamp.is_file() and stamp.read_text() == key:
         say("tbags shear: %s in %s: done before, reused" % (deck, folder))
         return
     stamp.unlink(missing_ok=True)
     stage(folder, deck, ranks, variables, say)
     stamp.write_text(key)
+
+
+def vars_key(variables):
+    return json.dumps({k: str(v) for k, v in variables.items()}, sort_keys=True)
+
+
+def stage_run(folder, deck, ranks, variables, say, resume=False, origin=""):
+    """One of a preset's runs (stage()), its variables stamped beside it. resume: a run that
+    finished before with the same variables is kept, an interrupted one continues from its
+    checkpoint (resume.py; the older checkpoint if the newer does not read), else it starts
+    again; a run made with other variables (or another origin: its fill's) is not resumed."""
+    folder = Path(folder)
+    stamp = folder / (".%s.vars" % deck)
+    key = vars_key(variables) + origin
+    if resume and stamp.is_file():
+        if stamp.read_text() != key:
+            raise LaunchError("shear: --resume: %s was run with other -var values or another fill "
+                              "(%s); run without --resume to start it again" % (folder, stamp))
+        if resumed.finished(folder, deck):
+            say("tbags shear: %s in %s: finished before, kept" % (deck, folder))
+            return
+        tries = resumed.checkpoints(folder, deck)
+        for k, (name, extra) in enumerate(tries):
+            say("tbags shear: %s in %s: resuming from %s" % (deck, folder, name))
+            resumed.set_aside(folder, deck)
+            try:
+                stage(folder, deck, ranks, dict(variables, **extra), say)
+            except LaunchError as e:
+                if k + 1 == len(tries):
+                    raise
+                say("%s\n  (resuming from %s failed; the older checkpoint next)" % (e, name))
+                continue
+            resumed.merge_csv(folder / resumed.CSV[deck])
+            return
+    resumed.forget(folder, deck)
+    folder.mkdir(parents=True, exist_ok=True)
+    stamp.write_text(key)    # before the run: its checkpoints belong to these variables
+    stage(folder, deck, ranks, variables, say)
 
 
 def made_part(part_stage, where):
@@ -360,14 +403,15 @@ def made_part(part_stage, where):
     return os.path.relpath(Path(part_stage[0]) / part_stage[-1], where)
 
 
-def estimate_paper(out, fill_vars, ranks, say, part=None):
+def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
     """The paper run's cost measured on its own bag (fill_vars: its size and the user's -var
     values): the bag and its fill (the run's own, in out), the loads' shared part of the
     compression (part: stage_once's arguments, in out/compress; the run's loads reuse it), the
     rest of the compression and a short shear to a checkpoint (estimate/state), each made once; then a short
     stretch resumed from the checkpoint at 1, 2 and `ranks` ranks (estimate/np<P>) and a few steps
     at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
-    scaling model); then the projection (inputs/project_time.py)."""
+    scaling model); then the projection (inputs/project_time.py). reuse: an earlier projection
+    is said again instead of timing anew."""
     counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
     folder = Path(out) / "estimate"
     stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
@@ -378,6 +422,13 @@ def estimate_paper(out, fill_vars, ranks, say, part=None):
     if part:
         state["compress_from"] = made_part(part, folder / "state")
     stage_once(folder / "state", "shear", ranks, state, say, "state.data")
+    projection = folder / "projection.txt"
+    if reuse and projection.is_file():
+        say("tbags shear paper: the estimate in %s, made before (./tbags shear paper --estimate "
+            "measures it again):" % projection)
+        for line in projection.read_text().splitlines()[:5]:
+            say(line)
+        return
     restart = max((folder / "state").glob("shear.restart.*"), key=lambda f: f.stat().st_mtime).name
     timed = round(e["u_timed"] / (e["v"] * float(log_timestep(folder / "state" / "log.shear"))))
     say("tbags shear paper: timing %d shear steps of the paper bag at %s rank(s) ..."

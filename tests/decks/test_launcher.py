@@ -6,6 +6,7 @@ import shutil
 import subprocess
 
 import lmprun
+import pytest
 
 TINY = ["-np", "1", "-var", "nx", "9", "-var", "ny", "9", "-var", "nz", "5", "-var", "v", "0.02",
         "-var", "ufinal", "0.0003"]
@@ -74,3 +75,46 @@ def test_loads_share_one_compression(tmp_path):
         assert 0 < rest < n_part
         assert "SHEARED: u 0.300 mm" in log
     assert (out / "F1960" / "figures" / "shear.png").is_file()
+
+
+def test_resume_an_interrupted_run(tmp_path):
+    """./tbags shear killed while shearing, after its first checkpoint, then called again with
+    --resume: the fill is reused, the shear continues from its newer checkpoint, and the CSV ends
+    with one row for every du_csv of u to u_final (the rows the killed run wrote past its
+    checkpoint replaced by the resumed run's), from which the figures are made."""
+    import signal
+    import time
+    import numpy as np
+    out = tmp_path / "out"
+    argv = [str(lmprun.ROOT / "tbags"), "shear", "--out", str(out)] + TINY[:-3] + [
+        "-var", "ufinal", "0.0008", "-var", "du_dump", "0.0002", "-var", "du_csv", "0.00002"]
+    p = subprocess.Popen(argv, env=launcher_env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         text=True, start_new_session=True)
+    t0 = time.time()
+    try:    # killed once a checkpoint exists and rows past it are written (u > 0.24 mm)
+        while time.time() - t0 < 600 and p.poll() is None:
+            rows = (out / "shear.csv").read_text().splitlines() if (out / "shear.csv").is_file() else []
+            if (out / "shear.restart.1").is_file() and len(rows) > 2 + 13:
+                break
+            time.sleep(0.05)
+    finally:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.wait()
+    assert (out / "shear.restart.1").is_file() and "SHEARED" not in (out / "screen.shear.txt").read_text()
+    interrupted = (out / "shear.csv").read_text().count("\n") - 2    # rows (a header, a title)
+    r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900)
+    print(r.stdout[-3000:], r.stderr[-2000:])
+    assert r.returncode == 0
+    assert "fill in %s: done before, reused" % out in r.stdout
+    assert "resuming from shear.restart." in r.stdout and "SHEARED: u 0.800 mm" in r.stdout
+    rows = np.genfromtxt(out / "shear.csv", delimiter=",", names=True)
+    print("killed after %d rows; resumed to %d" % (interrupted, len(rows)))
+    assert 14 <= interrupted < len(rows) == 41
+    # (the u = 0 row is one step: the first interval's mean is 0.01 mm past it)
+    steps = np.diff(rows["u_mm"])
+    assert steps[0] == pytest.approx(0.01, abs=1e-3) and np.all(np.abs(steps[1:] - 0.02) < 1e-3)
+    assert rows["u_mm"][-1] == pytest.approx(0.79, abs=2e-3)
+    assert (out / "screen.shear.txt.1").is_file() and (out / "figures" / "shear.png").is_file()
+    # called again: the finished run is kept, not run
+    r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900)
+    assert r.returncode == 0 and "shear in %s: finished before, kept" % out in r.stdout

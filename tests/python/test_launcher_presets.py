@@ -53,13 +53,14 @@ def test_loads_of_one_fill_share_their_compression():
 
 
 def test_parse_options_variables_and_seed():
-    preset, ranks, out, nreal, estimate, seed, variables, extra, engine = parse(
+    preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume = parse(
         ["trends", "-np", "3", "--realizations", "2", "-var", "seed", "7", "-var", "amps", "0.25", "1",
          "-var", "v", "0.01"])
-    assert (preset.name, ranks, nreal, seed, engine) == ("trends", 3, 2, 7, "lammps")
+    assert (preset.name, ranks, nreal, seed, engine, resume) == ("trends", 3, 2, 7, "lammps", False)
     assert variables == {"amps": ["0.25", "1"], "v": "0.01"} and not extra and out is None
     assert parse([])[0].name == "demo"
-    assert parse(["--engine", "liggghts"])[-1] == "liggghts"
+    assert parse(["--engine", "liggghts"])[-2] == "liggghts"
+    assert parse(["paper", "--resume"])[-1] is True
 
 
 @pytest.mark.parametrize("argv, message", [
@@ -74,6 +75,8 @@ def test_parse_options_variables_and_seed():
     (["--engine", "lampps"], "--engine must be lammps or liggghts"),
     (["cyclic", "--engine", "liggghts"], "LIGGGHTS has no decks for cyclic yet"),
     (["paper", "--engine", "liggghts"], "LIGGGHTS has no decks for paper yet"),
+    (["paper", "--estimate", "--resume"], "--resume continues LAMMPS runs"),
+    (["trends", "--engine", "liggghts", "--resume"], "--resume continues LAMMPS runs"),
 ])
 def test_bad_arguments_say_what_is_wrong(argv, message):
     with pytest.raises(LaunchError, match=message):

@@ -1,0 +1,93 @@
+"""Continuing a preset's interrupted runs (./tbags shear PRESET --resume).
+
+A run that finished is kept; a run with a checkpoint continues from it (in.shear: shear.restart.1
+and .2, alternating every du_dump of u, the newer first; in.cyclic: cyclic.restart.aK after
+amplitude K, the highest first, resumed at amplitude K + 1); any other run starts again. The
+resumed deck appends to the run's CSV, after rows the interrupted run may have written past its
+checkpoint: merge_rows() keeps, for every stretch of time, the rows written last.
+"""
+from pathlib import Path
+import re
+
+FINISHED = {"shear": "SHEARED:", "cyclic": "CYCLED:"}    # the deck's last summary line
+CSV = {"shear": "shear.csv", "cyclic": "cyclic.csv"}
+# s: two rows of the same stretch of steps (their times printed to 1e-7 s) are at the same time;
+# rows of different stretches are at least a row's steps apart (over 1e-5 s)
+TIME_TOL = 1e-6
+
+
+def screen_file(folder, deck):
+    return Path(folder) / ("screen.%s.txt" % deck)
+
+
+def finished(folder, deck):
+    """Whether the run in folder printed its deck's closing summary line."""
+    screen = screen_file(folder, deck)
+    return screen.is_file() and any(line.startswith(FINISHED[deck])
+                                    for line in screen.read_text(errors="replace").splitlines())
+
+
+def checkpoints(folder, deck):
+    """The run's checkpoints as [(file name, the deck's -var values to resume from it)], the one to
+    try first first."""
+    folder = Path(folder)
+    if deck == "shear":
+        files = sorted(folder.glob("shear.restart.[12]"), key=lambda f: f.stat().st_mtime, reverse=True)
+        return [(f.name, {"restart": f.name}) for f in files]
+    if deck == "cyclic":
+        amps = [(int(m.group(1)), f) for f in folder.glob("cyclic.restart.a*")
+                if (m := re.fullmatch(r"cyclic\.restart\.a(\d+)", f.name))]
+        return [(f.name, {"restart": f.name, "start": k + 1}) for k, f in sorted(amps, reverse=True)]
+    return []
+
+
+def set_aside(folder, deck):
+    """The interrupted run's log and screen output kept as log.<deck>.N and screen.<deck>.txt.N
+    (N the first number free for both), for the resumed run's own."""
+    folder = Path(folder)
+    files = [folder / ("log." + deck), screen_file(folder, deck)]
+    n = 1
+    while any(Path("%s.%d" % (f, n)).exists() for f in files):
+        n += 1
+    for f in files:
+        if f.is_file():
+            f.rename("%s.%d" % (f, n))
+
+
+def forget(folder, deck):
+    """A run starting again: its earlier checkpoints, CSV and dumps removed (a later --resume must
+    not continue them, nor the figures read them)."""
+    folder = Path(folder)
+    names = [f for f, _ in checkpoints(folder, deck)] + [CSV[deck]]
+    for f in [folder / n for n in names] + list(folder.glob("dump.*")):
+        f.unlink(missing_ok=True)
+
+
+def merge_rows(lines):
+    """A CSV's lines (a header, comment lines, rows whose first field is the time) with the rows
+    of every resumed stretch in place of those the interrupted run wrote for the same times: a
+    row whose time is not past the row before it starts a resumed stretch, and the rows before
+    it at its time or later are dropped. A comment line repeated (the resumed deck's title) is
+    kept once."""
+    out, seen, last = [], set(), None
+    for line in lines:
+        if not line.strip():
+            continue
+        try:
+            t = float(line.split(",", 1)[0])
+        except ValueError:    # the header or a comment
+            if line not in seen:
+                seen.add(line)
+                out.append((None, line))
+            continue
+        if last is not None and t <= last + TIME_TOL:    # a resumed stretch starts
+            out = [(s, l) for s, l in out if s is None or s < t - TIME_TOL]
+        out.append((t, line))
+        last = t
+    return [line for _, line in out]
+
+
+def merge_csv(path):
+    path = Path(path)
+    if path.is_file():
+        path.write_text("\n".join(merge_rows(path.read_text().splitlines())) + "\n")

@@ -1,0 +1,110 @@
+"""./tbags shear --resume without LAMMPS: the CSV merge, the checkpoint order, and stage_run's
+decisions with a stand-in for the LAMMPS stage (the deck test test_launcher.py resumes a real
+interrupted run)."""
+import os
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "launcher"))
+from tbagsrun import LaunchError, resume, shear  # noqa: E402
+
+HEAD = ["time_s,u_mm,S_N", "# means over each row's interval"]
+
+
+def test_rows_written_last_win():
+    # checkpoint after 0.2; the interrupted run wrote 0.3 and 0.4 (0.3's time printed 1e-7 early)
+    rows = HEAD + ["0.0000000,0,1", "0.1000000,1,2", "0.2000000,2,3", "0.2999999,3,4", "0.4000000,4,5",
+                   HEAD[1], "0.3000001,3,40", "0.4000000,4,50", "0.5000000,5,60"]
+    assert resume.merge_rows(rows) == HEAD + ["0.0000000,0,1", "0.1000000,1,2", "0.2000000,2,3",
+                                              "0.3000001,3,40", "0.4000000,4,50", "0.5000000,5,60"]
+    # resumed twice, the second time from an earlier checkpoint than the first's last rows
+    twice = rows + ["0.2000000,2,300", "0.3000000,3,400"]
+    assert resume.merge_rows(twice)[-3:] == ["0.1000000,1,2", "0.2000000,2,300", "0.3000000,3,400"]
+    # nothing past the checkpoint: unchanged
+    clean = HEAD + ["0.0,0,1", "0.1,1,2", "0.2,2,3"]
+    assert resume.merge_rows(clean) == clean
+
+
+def touch(path, age=0.0):
+    path.write_text("x")
+    t = time.time() - age
+    os.utime(path, (t, t))
+
+
+def test_checkpoints_newest_first(tmp_path):
+    touch(tmp_path / "shear.restart.1", age=10)
+    touch(tmp_path / "shear.restart.2", age=20)
+    assert [n for n, _ in resume.checkpoints(tmp_path, "shear")] == ["shear.restart.1", "shear.restart.2"]
+    for k in (1, 2, 10):
+        touch(tmp_path / ("cyclic.restart.a%d" % k))
+    touch(tmp_path / "cyclic.restart.a3.bak")
+    assert resume.checkpoints(tmp_path, "cyclic") == [
+        ("cyclic.restart.a10", {"restart": "cyclic.restart.a10", "start": 11}),
+        ("cyclic.restart.a2", {"restart": "cyclic.restart.a2", "start": 3}),
+        ("cyclic.restart.a1", {"restart": "cyclic.restart.a1", "start": 2})]
+
+
+class FakeStage:
+    """shear.stage's stand-in: records the -var values; fails when the restart named is in `bad`;
+    else writes a checkpoint, a CSV row and, if `finish`, the closing line."""
+
+    def __init__(self, bad=(), finish=True):
+        self.calls, self.bad, self.finish = [], set(bad), finish
+
+    def __call__(self, folder, deck, ranks, variables, say):
+        self.calls.append(dict(variables))
+        folder = Path(folder)
+        if variables.get("restart") in self.bad:
+            raise LaunchError("ERROR: cannot read %s" % variables["restart"])
+        touch(folder / "shear.restart.1")
+        with open(folder / "shear.csv", "a") as fh:
+            fh.write("%s\n" % ("time_s,S_N\n0.0,1" if "restart" not in variables else "0.5,9"))
+        (folder / "log.shear").write_text("log")
+        (folder / "screen.shear.txt").write_text("SHEARED: u 1 mm\n" if self.finish else "Step\n")
+
+
+def test_stage_run_resumes_keeps_and_refuses(tmp_path, monkeypatch):
+    run = tmp_path / "F5500"
+    said = []
+    fake = FakeStage(finish=False)
+    monkeypatch.setattr(shear, "stage", fake)
+    v = {"Fpaper": 5500, "fill": "../fill.data"}
+    shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")   # nothing yet: from the start
+    assert fake.calls == [v] and (run / ".shear.vars").is_file()
+    with open(run / "shear.csv", "a") as fh:    # rows past the checkpoint, then interrupted
+        fh.write("0.6,7\n")
+    fake.finish = True
+    shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
+    assert fake.calls[-1] == dict(v, restart="shear.restart.1")
+    assert (run / "shear.csv").read_text() == "time_s,S_N\n0.0,1\n0.5,9\n"
+    assert (run / "log.shear.1").is_file() and (run / "screen.shear.txt.1").is_file()
+    shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
+    assert len(fake.calls) == 2 and "finished before, kept" in said[-1]
+    with pytest.raises(LaunchError, match="run with other -var values or another fill"):
+        shear.stage_run(run, "shear", 2, dict(v, Fpaper=3730), said.append, resume=True, origin="fill A")
+    with pytest.raises(LaunchError, match="another fill"):
+        shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill B")
+    # without --resume: from the start, the old checkpoints, CSV and dumps gone first
+    touch(run / "shear.restart.2")
+    touch(run / "dump.grains.100")
+    shear.stage_run(run, "shear", 2, v, said.append, origin="fill A")
+    assert "restart" not in fake.calls[-1] and not (run / "shear.restart.2").exists()
+    assert not (run / "dump.grains.100").exists() and (run / "shear.csv").read_text() == "time_s,S_N\n0.0,1\n"
+
+
+def test_unreadable_checkpoint_falls_back_to_the_older(tmp_path, monkeypatch):
+    run = tmp_path / "F1960"
+    fake = FakeStage(bad={"shear.restart.2"})
+    monkeypatch.setattr(shear, "stage", fake)
+    v = {"Fpaper": 1960}
+    shear.stage_run(run, "shear", 1, v, lambda s: None, resume=True)
+    (run / "screen.shear.txt").write_text("Step\n")    # interrupted
+    touch(run / "shear.restart.1", age=100)
+    touch(run / "shear.restart.2")                      # newer, half written
+    said = []
+    shear.stage_run(run, "shear", 1, v, said.append, resume=True)
+    assert [c.get("restart") for c in fake.calls[1:]] == ["shear.restart.2", "shear.restart.1"]
+    assert any("the older checkpoint next" in s for s in said)
