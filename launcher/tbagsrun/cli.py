@@ -5,14 +5,16 @@ import shlex
 import subprocess
 import sys
 import textwrap
+from dataclasses import dataclass
 from pathlib import Path
 
 from . import ROOT, LaunchError
 from .presets import PRESETS
+from . import shear as shear_flow
 from .shear import run_preset, run_realizations
 
 USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)]
-                    [--resume] [--engine lammps|liggghts] [-var name value ...]
+                    [--resume] [--progress SECONDS] [--engine lammps|liggghts] [-var name value ...]
 Bag (inputs/in.bag), fill (in.fill), simple shear (in.shear), then figures. -var values override
 the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufinal, dt, seed...).
 --out DIR: write there instead of runs/<preset>/ (runs/shear-demo/ for demo).
@@ -20,6 +22,8 @@ the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufi
 fill and shared compression are reused, a run that finished is kept, and a run with a checkpoint
 continues from it (in.shear's shear.restart.1/2, the newer one; in.cyclic's cyclic.restart.aK at
 amplitude K + 1), its CSV keeping the rows up to the checkpoint; a run with neither starts again.
+--progress SECONDS: a long stage's progress on the console this often (% done and the time
+left; default 600, 0 for none).
 Presets of several loads (trends, cyclic, paper) compress once to 0.9 of the smallest load's F_v
 (in compress/) and continue each load from there (-var compress_to P sets the fraction, 0: each
 load compresses by itself).
@@ -49,9 +53,24 @@ def positive(option, text, what="a positive number"):
     return int(text)
 
 
+@dataclass
+class Options:
+    """./tbags shear's command line, parsed."""
+    preset: object
+    ranks: int
+    out: object          # a Path, or None: runs/<preset>
+    nreal: int           # --realizations
+    estimate: bool       # --estimate: the paper's estimate only
+    seed: int
+    variables: dict      # -var name value(s)
+    extra: list          # other words (LAMMPS switches: refused)
+    engine: str
+    resume: bool
+    progress_every: int  # s
+
+
 def parse(argv):
-    """-> preset, ranks, out, realizations, estimate_only, seed, variables, extra LAMMPS args,
-    engine, resume."""
+    """-> the options as an Options."""
     args = list(argv)
     preset = PRESETS["demo"]
     if args and not args[0].startswith("-"):
@@ -61,7 +80,7 @@ def parse(argv):
                               % (name, ", ".join(PRESETS)))
         preset = PRESETS[name]
     ranks, out, nreal, estimate, seed = len(os.sched_getaffinity(0)), None, 1, False, 4821
-    engine, resume = "lammps", False
+    engine, resume, progress_every = "lammps", False, shear_flow.PROGRESS_DEFAULT
     variables, extra = {}, []
     while args:
         a = args.pop(0)
@@ -71,6 +90,11 @@ def parse(argv):
             estimate = True
         elif a == "--resume":
             resume = True
+        elif a == "--progress":
+            text = args.pop(0) if args else ""
+            if not text.isdigit():
+                raise LaunchError("shear: --progress needs a whole number of seconds (0: none)")
+            progress_every = int(text)
         elif a == "--engine":
             engine = args.pop(0) if args else ""
             if engine not in ("lammps", "liggghts"):
@@ -111,7 +135,8 @@ def parse(argv):
     if resume and (engine != "lammps" or estimate):
         raise LaunchError("shear: --resume continues LAMMPS runs of a preset (not with --engine "
                           "liggghts or --estimate)")
-    return preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume
+    return Options(preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume,
+                   progress_every)
 
 
 def set_up():
@@ -130,20 +155,20 @@ def shear(argv):
     if argv and argv[0] in ("--help", "-h", "help"):
         print(usage())
         return
-    preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume = parse(argv)
-    if extra:
-        raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(extra))
-    out = out or ROOT / "runs" / (preset.folder + ("-liggghts" if engine == "liggghts" else ""))
+    o = parse(argv)
+    if o.extra:
+        raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(o.extra))
+    out = o.out or ROOT / "runs" / (o.preset.folder + ("-liggghts" if o.engine == "liggghts" else ""))
+    shear_flow.PROGRESS_EVERY = o.progress_every
     set_up()
 
     def say(line):
         print(line, flush=True)
-    if nreal > 1:
-        run_realizations(preset, nreal, seed, ranks, out, variables, say, engine, resume)
+    if o.nreal > 1:
+        run_realizations(o.preset, o.nreal, o.seed, o.ranks, out, o.variables, say, o.engine, o.resume)
     else:
-        run_preset(preset, ranks, out, dict(variables, seed=seed), say, estimate_only=estimate,
-                   engine=engine, resume=resume)
-
+        run_preset(o.preset, o.ranks, out, dict(o.variables, seed=o.seed), say, estimate_only=o.estimate,
+                   engine=o.engine, resume=o.resume)
 
 def main(argv):
     if not argv or argv[0] != "shear":

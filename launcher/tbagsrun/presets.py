@@ -70,7 +70,7 @@ PRESETS = {p.name: p for p in (
                 "15 mm/s peak plate speed (in.cyclic: -var amps \"0.25 1 5\" -var cycles N -var wave "
                 "triangle -var vpeak V or -var freq F); then the loops, K_eq/K_0 and h_eq curves, "
                 "Ramberg-Osgood fit and report.md (tbagspost/cyclic.py). Hours on 2 cores; each load "
-                "checkpoints after every amplitude. -> runs/cyclic/"),
+                "checkpoints after every amplitude (--resume continues there). -> runs/cyclic/"),
     Preset("stack", "stack", DEMO_BAG,
            (Run("single", "cyclic", dict(Fpaper=3730)),
             Run("stack", "cyclic", dict(Fpaper=3730, bags=2, film_mu=0.1))), True, "stack",
@@ -82,7 +82,7 @@ PRESETS = {p.name: p for p in (
                 "-var film_mu_below 1e10 fixes it to the lower bag), at 3.73 kN's stress with the "
                 "cyclic protocol, and one bag of the same fill beside it; then the cyclic analysis of "
                 "both and the split of the plate's displacement into bag shear and film slip "
-                "(tbagspost/stack.py). Hours on 2 cores; checkpoints after every amplitude. "
+                "(tbagspost/stack.py). Hours on 2 cores; checkpoints after every amplitude (--resume). "
                 "-> runs/stack/{stack,single,figures}"),
     Preset("paper", "paper", PAPER_BAG, per_load("shear", v=0.004, ufinal=0.015), False, "figures",
            realizations=False, estimate=True,
@@ -92,7 +92,8 @@ PRESETS = {p.name: p for p in (
                 "stretch from it at 1, 2 and N ranks, counts LAMMPS's decomposition at 4-64 ranks "
                 "and prints the projected time and the scaling model (about an hour on 2 cores, "
                 "once: a second call reuses the fill and checkpoint); `paper --estimate` stops "
-                "there. -> runs/paper/"),
+                "there. Each load checkpoints every 1 mm of u: `paper --resume` continues an "
+                "interrupted run. -> runs/paper/"),
 )}
 
 # the paper preset's estimate, on the paper's own bag and fill: compression and shearing to

@@ -21,7 +21,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from . import ROOT, LaunchError, lammps, resume as resumed
+from . import ROOT, LaunchError, lammps, progress, resume as resumed
 from .presets import COMPRESS_SHARED, DECOMPOSITIONS, ESTIMATE, Run
 
 sys.path.insert(0, str(ROOT / "postprocess"))
@@ -30,6 +30,8 @@ from tbagspost.run import log_timestep  # noqa: E402  (the reader of the decks' 
 # the lines of a stage's screen output that the launcher repeats (the decks' summaries)
 SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSION PART|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
 MARKER = ".tbags-run"    # in every output folder the launcher made (so --out never clears a user's)
+PROGRESS_DEFAULT = 600    # s between a stage's progress lines on the console (--progress; 0: none)
+PROGRESS_EVERY = PROGRESS_DEFAULT
 
 
 def run_python(args, stdout=None):
@@ -51,10 +53,14 @@ def run_script(name, args, say):
 
 
 def stage(folder, deck, ranks, variables, say):
-    """inputs/in.<deck> in folder with `ranks` ranks; says its summary lines; stops if it fails."""
+    """inputs/in.<deck> in folder with `ranks` ranks; says its summary lines; stops if it fails.
+    Its progress goes to the console every PROGRESS_EVERY seconds (progress.py)."""
     say("tbags shear: %s in %s ..." % (deck, folder))
-    res = lammps.run(ROOT / "inputs" / ("in." + deck), folder, ranks, variables,
-                     log="log." + deck, screen="screen.%s.txt" % deck)
+    screen = "screen.%s.txt" % deck
+    with progress.Watch(Path(folder) / screen, "%s in %s" % (deck, folder), PROGRESS_EVERY,
+                        lambda line: print(line, flush=True)):
+        res = lammps.run(ROOT / "inputs" / ("in." + deck), folder, ranks, variables,
+                         log="log." + deck, screen=screen)
     report(res, "the %s stage" % deck, Path(folder) / ("log." + deck), say)
 
 

@@ -53,14 +53,15 @@ def test_loads_of_one_fill_share_their_compression():
 
 
 def test_parse_options_variables_and_seed():
-    preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume = parse(
-        ["trends", "-np", "3", "--realizations", "2", "-var", "seed", "7", "-var", "amps", "0.25", "1",
-         "-var", "v", "0.01"])
-    assert (preset.name, ranks, nreal, seed, engine, resume) == ("trends", 3, 2, 7, "lammps", False)
-    assert variables == {"amps": ["0.25", "1"], "v": "0.01"} and not extra and out is None
-    assert parse([])[0].name == "demo"
-    assert parse(["--engine", "liggghts"])[-2] == "liggghts"
-    assert parse(["paper", "--resume"])[-1] is True
+    o = parse(["trends", "-np", "3", "--realizations", "2", "-var", "seed", "7", "-var", "amps", "0.25", "1",
+               "-var", "v", "0.01"])
+    assert (o.preset.name, o.ranks, o.nreal, o.seed, o.engine, o.resume, o.progress_every) == \
+        ("trends", 3, 2, 7, "lammps", False, 600)
+    assert o.variables == {"amps": ["0.25", "1"], "v": "0.01"} and not o.extra and o.out is None
+    assert parse([]).preset.name == "demo"
+    assert parse(["--engine", "liggghts"]).engine == "liggghts"
+    o = parse(["paper", "--resume", "--progress", "60"])
+    assert o.resume is True and o.progress_every == 60
 
 
 @pytest.mark.parametrize("argv, message", [
@@ -77,6 +78,7 @@ def test_parse_options_variables_and_seed():
     (["paper", "--engine", "liggghts"], "LIGGGHTS has no decks for paper yet"),
     (["paper", "--estimate", "--resume"], "--resume continues LAMMPS runs"),
     (["trends", "--engine", "liggghts", "--resume"], "--resume continues LAMMPS runs"),
+    (["--progress", "-1"], "--progress needs a whole number of seconds"),
 ])
 def test_bad_arguments_say_what_is_wrong(argv, message):
     with pytest.raises(LaunchError, match=message):
