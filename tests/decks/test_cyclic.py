@@ -210,3 +210,28 @@ def test_cycles_after_the_shared_compression(cycled, tmp_path):
     print("COMPRESSED %.2f N (target %.2f); cycled F_v mean %.2f N" % (fv, target, d["Fv_N"][1:].mean()))
     assert target == pytest.approx(5500 * 7 * 7 / 79 ** 2) and abs(fv - target) < 0.005 * target
     assert abs(d["Fv_N"][1:].mean() - target) < 0.01 * target and "CYCLED" in res.output
+
+
+def test_launcher_resumes_at_the_next_amplitude(cycled, tmp_path):
+    """./tbags shear --resume's step for a cyclic run (shear.stage_run): a run interrupted during
+    amplitude 2 (its checkpoint after amplitude 1, its CSV with amplitude 2's rows written so far)
+    continues at amplitude 2 from cyclic.restart.a1, and its CSV file ends with as many rows as
+    the straight run's (the interrupted rows replaced)."""
+    sys.path.insert(0, str(lmprun.ROOT / "launcher"))
+    from tbagsrun import shear
+    wd, _ = cycled
+    straight = np.genfromtxt(wd / "cyclic.csv", delimiter=",", names=True, comments="#")
+    lines = (wd / "cyclic.csv").read_text().splitlines()
+    first2 = next(k for k, line in enumerate(lines) if line.split(",")[1:2] == ["2"])
+    (tmp_path / "cyclic.csv").write_text("\n".join(lines[:first2 + 150]) + "\n")    # cut in amplitude 2
+    shutil.copy(wd / "cyclic.restart.a1", tmp_path)
+    (tmp_path / "screen.cyclic.txt").write_text("AMPLITUDE 1 DONE\n")
+    (tmp_path / ".cyclic.vars").write_text(shear.vars_key(PROTOCOL))
+    said = []
+    shear.stage_run(tmp_path, "cyclic", 1, PROTOCOL, said.append, resume=True)
+    print("\n".join(said))
+    assert said[0].endswith("resuming from cyclic.restart.a1") and any("CYCLED" in s for s in said)
+    rows = np.genfromtxt(tmp_path / "cyclic.csv", delimiter=",", names=True, comments="#")
+    assert len(rows) == len(straight) and np.all(np.diff(rows["time_s"]) > 0)
+    assert np.array_equal(rows["amp"], straight["amp"]) and np.array_equal(rows["cycle"], straight["cycle"])
+    assert (tmp_path / "screen.cyclic.txt.1").is_file()
