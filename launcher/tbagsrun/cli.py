@@ -170,6 +170,7 @@ def shear(argv):
         run_preset(o.preset, o.ranks, out, dict(o.variables, seed=o.seed), say, estimate_only=o.estimate,
                    engine=o.engine, resume=o.resume)
 
+
 def main(argv):
     if not argv or argv[0] != "shear":
         sys.exit("usage: python3 -m tbagsrun shear [PRESET] [options] (./tbags shear --help)")
