@@ -4,7 +4,12 @@ lammps.py   the one way to run LAMMPS with the plugin: the launcher, the tests, 
             the calibration all call it
 presets.py  the shear presets as data: bag size, the runs from one fill, post-processing, checks
 shear.py    the preset workflow: bag, fill, the preset's runs (side by side where they fit the
-            cores), figures, checks; realizations of it; the paper preset's time estimate
+            cores), figures, checks; realizations of it
+stages.py   one stage (a deck run in its folder): made once and reused, or stamped and continued
+            on --resume (resume.py: finished runs, checkpoints, the CSV merged); its progress
+            on the console (progress.py)
+estimate.py the paper preset's time estimate and scaling model
+liggghts_stage.py  a shear run in LIGGGHTS (--engine liggghts), written as in.shear's CSV
 cli.py      `python3 -m tbagsrun shear ...` (__main__.py), what `./tbags shear` runs: arguments,
             set-up, then shear.py
 """

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from . import ROOT, LaunchError
 from .presets import PRESETS
-from . import shear as shear_flow
+from . import stages
 from .shear import run_preset, run_realizations
 
 USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)]
@@ -80,7 +80,7 @@ def parse(argv):
                               % (name, ", ".join(PRESETS)))
         preset = PRESETS[name]
     ranks, out, nreal, estimate, seed = len(os.sched_getaffinity(0)), None, 1, False, 4821
-    engine, resume, progress_every = "lammps", False, shear_flow.PROGRESS_DEFAULT
+    engine, resume, progress_every = "lammps", False, stages.PROGRESS_DEFAULT
     variables, extra = {}, []
     while args:
         a = args.pop(0)
@@ -159,7 +159,7 @@ def shear(argv):
     if o.extra:
         raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(o.extra))
     out = o.out or ROOT / "runs" / (o.preset.folder + ("-liggghts" if o.engine == "liggghts" else ""))
-    shear_flow.PROGRESS_EVERY = o.progress_every
+    stages.PROGRESS_EVERY = o.progress_every
     set_up()
 
     def say(line):

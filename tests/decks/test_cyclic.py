@@ -213,12 +213,12 @@ def test_cycles_after_the_shared_compression(cycled, tmp_path):
 
 
 def test_launcher_resumes_at_the_next_amplitude(cycled, tmp_path):
-    """./tbags shear --resume's step for a cyclic run (shear.stage_run): a run interrupted during
+    """./tbags shear --resume's step for a cyclic run (stages.stage_run): a run interrupted during
     amplitude 2 (its checkpoint after amplitude 1, its CSV with amplitude 2's rows written so far)
     continues at amplitude 2 from cyclic.restart.a1, and its CSV file ends with as many rows as
     the straight run's (the interrupted rows replaced)."""
     sys.path.insert(0, str(lmprun.ROOT / "launcher"))
-    from tbagsrun import shear
+    from tbagsrun import stages
     wd, _ = cycled
     straight = np.genfromtxt(wd / "cyclic.csv", delimiter=",", names=True, comments="#")
     lines = (wd / "cyclic.csv").read_text().splitlines()
@@ -226,9 +226,9 @@ def test_launcher_resumes_at_the_next_amplitude(cycled, tmp_path):
     (tmp_path / "cyclic.csv").write_text("\n".join(lines[:first2 + 150]) + "\n")    # cut in amplitude 2
     shutil.copy(wd / "cyclic.restart.a1", tmp_path)
     (tmp_path / "screen.cyclic.txt").write_text("AMPLITUDE 1 DONE\n")
-    (tmp_path / ".cyclic.vars").write_text(shear.vars_key(PROTOCOL))
+    (tmp_path / ".cyclic.vars").write_text(stages.vars_key(PROTOCOL))
     said = []
-    shear.stage_run(tmp_path, "cyclic", 1, PROTOCOL, said.append, resume=True)
+    stages.stage_run(tmp_path, "cyclic", 1, PROTOCOL, said.append, resume=True)
     print("\n".join(said))
     assert said[0].endswith("resuming from cyclic.restart.a1") and any("CYCLED" in s for s in said)
     rows = np.genfromtxt(tmp_path / "cyclic.csv", delimiter=",", names=True, comments="#")

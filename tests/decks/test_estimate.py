@@ -3,15 +3,15 @@ bag and fill made once and reused, the checkpoint, timed stretches at 1 and 2 ra
 it, a decomposition run at 4 ranks; the projection and the scaling model, whose per-rank counts
 agree with LAMMPS's own (grid, Nlocal, Nghost, Neighs) on the real decomposition."""
 import lmprun
-from tbagsrun import shear
+from tbagsrun import estimate, shear, stages
 
 
 def test_estimate_on_the_tiny_bag(tmp_path, monkeypatch):
     # a short checkpoint and stretch (the tiny bag is 9 x 9 x 5: 411 atoms)
-    monkeypatch.setattr(shear, "ESTIMATE", dict(v=0.004, du_csv=2e-6, du_dump=4e-6, u_state=4e-6, u_timed=2e-6))
-    monkeypatch.setattr(shear, "DECOMPOSITIONS", (4,))
+    monkeypatch.setattr(estimate, "ESTIMATE", dict(v=0.004, du_csv=2e-6, du_dump=4e-6, u_state=4e-6, u_timed=2e-6))
+    monkeypatch.setattr(estimate, "DECOMPOSITIONS", (4,))
     said = []
-    shear.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, said.append)
+    estimate.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, said.append)
     text = (tmp_path / "estimate" / "projection.txt").read_text()
     assert "measured on the 9 x 9 x 5 bag" in text and "Scaling model" in text
     assert "counts at 4 ranks against LAMMPS's (grid, Nlocal, Nghost, Neighs; mean and max): agree" in text
@@ -19,7 +19,7 @@ def test_estimate_on_the_tiny_bag(tmp_path, monkeypatch):
         assert "for 333 steps" in (tmp_path / "estimate" / ("np%d" % p) / "log.shear").read_text()
     # a second call reuses the bag, fill and checkpoint
     said.clear()
-    shear.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, said.append)
+    estimate.estimate_paper(tmp_path, lmprun.TINY_BAG, 2, said.append)
     assert sum("done before, reused" in line for line in said) == 3
 
 
@@ -29,8 +29,8 @@ def test_estimate_makes_the_shared_part_that_the_run_reuses(tmp_path, monkeypatc
     the part's own steps once; the full run would reuse the part (stage_once's stamp)."""
     import re
     from tbagsrun.presets import PRESETS
-    monkeypatch.setattr(shear, "ESTIMATE", dict(v=0.004, du_csv=2e-6, du_dump=4e-6, u_state=4e-6, u_timed=2e-6))
-    monkeypatch.setattr(shear, "DECOMPOSITIONS", ())
+    monkeypatch.setattr(estimate, "ESTIMATE", dict(v=0.004, du_csv=2e-6, du_dump=4e-6, u_state=4e-6, u_timed=2e-6))
+    monkeypatch.setattr(estimate, "DECOMPOSITIONS", ())
     said = []
     shear.run_preset(PRESETS["paper"], 2, tmp_path, dict(lmprun.TINY_BAG), said.append, estimate_only=True)
     part = next(line for line in said if "COMPRESSION PART" in line)
@@ -44,5 +44,5 @@ def test_estimate_makes_the_shared_part_that_the_run_reuses(tmp_path, monkeypatc
         PRESETS["paper"], shear.shared_compression(PRESETS["paper"], {}, "lammps"), dict(lmprun.TINY_BAG)),
         said.append, "compress.restart")
     said.clear()
-    shear.stage_once(*part_stage)
+    stages.stage_once(*part_stage)
     assert said == ["tbags shear: shear in %s: done before, reused" % (tmp_path / "compress")]

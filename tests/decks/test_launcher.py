@@ -54,7 +54,7 @@ def test_loads_share_one_compression(tmp_path):
     import re
     from tbagsrun import shear
     from tbagsrun.presets import LOADS, Preset, per_load
-    from tbagspost.run import loops    # (postprocess/ is on the path through tbagsrun.shear)
+    from tbagspost.run import loops    # (postprocess/ is on the path through tbagsrun.estimate)
     preset = Preset("loads", "loads", lmprun.TINY_BAG, per_load("shear", v=0.02, ufinal=0.0003), True, "figures")
     said = []
     shear.run_preset(preset, 2, tmp_path / "out", {}, said.append)

@@ -13,7 +13,7 @@ import pytest
 
 import lmprun
 from tbagsrun.presets import DEMO_BAG, PRESETS
-from tbagsrun.shear import means_to_csv
+from tbagsrun.liggghts_stage import means_to_csv
 from twoengines import convert
 from tbagspost.realizations import metrics  # (postprocess/ is on the path through twoengines)
 from tbagspost.run import read_csv

@@ -13,7 +13,7 @@ import pytest
 import lmprun
 from twoengines import convert
 from tbagspost.run import read_csv  # (postprocess/ is on the path through twoengines)
-from tbagsrun.shear import means_to_csv
+from tbagsrun.liggghts_stage import means_to_csv
 
 RUN = {"nx": 9, "ny": 9, "nz": 5, "v": 0.015, "ufinal": 0.001}
 # LIGGGHTS's servo plates damp explicitly (as stock) at 1.5e-6 s: LAMMPS runs the same scheme

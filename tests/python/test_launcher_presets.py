@@ -10,7 +10,8 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "launcher"))
 from tbagsrun import LaunchError  # noqa: E402
 from tbagsrun.presets import COMPRESS_SHARED, LOADS, PRESETS, Run  # noqa: E402
-from tbagsrun.shear import means_to_csv, run_variables, shared_compression  # noqa: E402
+from tbagsrun.liggghts_stage import means_to_csv  # noqa: E402
+from tbagsrun.shear import run_variables, shared_compression  # noqa: E402
 from tbagspost.run import read_csv  # noqa: E402
 from tbagsrun.cli import parse, usage  # noqa: E402
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "launcher"))
-from tbagsrun import LaunchError, resume, shear  # noqa: E402
+from tbagsrun import LaunchError, resume, stages  # noqa: E402
 
 HEAD = ["time_s,u_mm,S_N", "# means over each row's interval"]
 
@@ -48,7 +48,7 @@ def test_checkpoints_newest_first(tmp_path):
 
 
 class FakeStage:
-    """shear.stage's stand-in: records the -var values; fails when the restart named is in `bad`;
+    """stages.stage's stand-in: records the -var values; fails when the restart named is in `bad`;
     else writes a checkpoint, a CSV row and, if `finish`, the closing line."""
 
     def __init__(self, bad=(), finish=True):
@@ -70,27 +70,27 @@ def test_stage_run_resumes_keeps_and_refuses(tmp_path, monkeypatch):
     run = tmp_path / "F5500"
     said = []
     fake = FakeStage(finish=False)
-    monkeypatch.setattr(shear, "stage", fake)
+    monkeypatch.setattr(stages, "stage", fake)
     v = {"Fpaper": 5500, "fill": "../fill.data"}
-    shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")   # nothing yet: from the start
+    stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")   # nothing yet: from the start
     assert fake.calls == [v] and (run / ".shear.vars").is_file()
     with open(run / "shear.csv", "a") as fh:    # rows past the checkpoint, then interrupted
         fh.write("0.6,7\n")
     fake.finish = True
-    shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
+    stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
     assert fake.calls[-1] == dict(v, restart="shear.restart.1")
     assert (run / "shear.csv").read_text() == "time_s,S_N\n0.0,1\n0.5,9\n"
     assert (run / "log.shear.1").is_file() and (run / "screen.shear.txt.1").is_file()
-    shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
+    stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
     assert len(fake.calls) == 2 and "finished before, kept" in said[-1]
     with pytest.raises(LaunchError, match="run with other -var values or another fill"):
-        shear.stage_run(run, "shear", 2, dict(v, Fpaper=3730), said.append, resume=True, origin="fill A")
+        stages.stage_run(run, "shear", 2, dict(v, Fpaper=3730), said.append, resume=True, origin="fill A")
     with pytest.raises(LaunchError, match="another fill"):
-        shear.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill B")
+        stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill B")
     # without --resume: from the start, the old checkpoints, CSV and dumps gone first
     touch(run / "shear.restart.2")
     touch(run / "dump.grains.100")
-    shear.stage_run(run, "shear", 2, v, said.append, origin="fill A")
+    stages.stage_run(run, "shear", 2, v, said.append, origin="fill A")
     assert "restart" not in fake.calls[-1] and not (run / "shear.restart.2").exists()
     assert not (run / "dump.grains.100").exists() and (run / "shear.csv").read_text() == "time_s,S_N\n0.0,1\n"
 
@@ -98,13 +98,13 @@ def test_stage_run_resumes_keeps_and_refuses(tmp_path, monkeypatch):
 def test_unreadable_checkpoint_falls_back_to_the_older(tmp_path, monkeypatch):
     run = tmp_path / "F1960"
     fake = FakeStage(bad={"shear.restart.2"})
-    monkeypatch.setattr(shear, "stage", fake)
+    monkeypatch.setattr(stages, "stage", fake)
     v = {"Fpaper": 1960}
-    shear.stage_run(run, "shear", 1, v, lambda s: None, resume=True)
+    stages.stage_run(run, "shear", 1, v, lambda s: None, resume=True)
     (run / "screen.shear.txt").write_text("Step\n")    # interrupted
     touch(run / "shear.restart.1", age=100)
     touch(run / "shear.restart.2")                      # newer, half written
     said = []
-    shear.stage_run(run, "shear", 1, v, said.append, resume=True)
+    stages.stage_run(run, "shear", 1, v, said.append, resume=True)
     assert [c.get("restart") for c in fake.calls[1:]] == ["shear.restart.2", "shear.restart.1"]
     assert any("the older checkpoint next" in s for s in said)

@@ -1,0 +1,59 @@
+"""The paper preset's estimate (./tbags shear paper --estimate): its run's cost measured on its own
+bag, projected over the whole run and over rank counts (inputs/project_time.py, inputs/scaling.py).
+"""
+import os
+import shutil
+import sys
+from pathlib import Path
+
+from . import ROOT, LaunchError
+from .presets import DECOMPOSITIONS, ESTIMATE
+from .stages import made_part, run_script, stage, stage_once
+
+sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost.run import log_timestep  # noqa: E402  (the reader of the decks' TIMESTEP line)
+
+
+def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
+    """The paper run's cost measured on its own bag (fill_vars: its size and the user's -var
+    values): the bag and its fill (the run's own, in out), the loads' shared part of the
+    compression (part: stage_once's arguments, in out/compress; the run's loads reuse it), the
+    rest of the compression and a short shear to a checkpoint (estimate/state), each made once; then a short
+    stretch resumed from the checkpoint at 1, 2 and `ranks` ranks (estimate/np<P>) and a few steps
+    at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
+    scaling model); then the projection (inputs/project_time.py). reuse: an earlier projection
+    is said again instead of timing anew."""
+    counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
+    folder = Path(out) / "estimate"
+    stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
+    stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
+    e = ESTIMATE
+    shear = dict(fill_vars, v=e["v"], du_csv=e["du_csv"])
+    state = dict(shear, fill="../../fill.data", ufinal=e["u_state"], du_dump=e["u_state"], state=1)
+    if part:
+        state["compress_from"] = made_part(part, folder / "state")
+    stage_once(folder / "state", "shear", ranks, state, say, "state.data")
+    projection = folder / "projection.txt"
+    if reuse and projection.is_file():
+        say("tbags shear paper: the estimate in %s, made before (./tbags shear paper --estimate "
+            "measures it again):" % projection)
+        for line in projection.read_text().splitlines()[:5]:
+            say(line)
+        return
+    restart = max((folder / "state").glob("shear.restart.*"), key=lambda f: f.stat().st_mtime).name
+    timed = round(e["u_timed"] / (e["v"] * float(log_timestep(folder / "state" / "log.shear"))))
+    say("tbags shear paper: timing %d shear steps of the paper bag at %s rank(s) ..."
+        % (timed, " and ".join(map(str, counts))))
+    quiet = lambda line: None    # noqa: E731
+    for r in counts:
+        sub = folder / ("np%d" % r)
+        shutil.rmtree(sub, ignore_errors=True)
+        stage(sub, "shear", r, dict(shear, restart="../state/" + restart, steps=timed, du_dump=1), quiet)
+    say("tbags shear paper: the domain decomposition at %s ranks (a few steps each) ..."
+        % " ".join(map(str, DECOMPOSITIONS)))
+    for r in DECOMPOSITIONS:
+        sub = folder / "decomp" / ("np%d" % r)
+        shutil.rmtree(sub, ignore_errors=True)
+        stage(sub, "shear", r, dict(shear, restart="../../state/" + restart, steps=5, du_dump=1), quiet)
+    if not run_script("project_time.py", [folder, "--ranks", ranks], say)[0]:
+        raise LaunchError("paper: the projection failed (above)")

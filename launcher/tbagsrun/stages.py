@@ -1,0 +1,133 @@
+"""One stage of a preset: a LAMMPS deck run in its folder under mpirun, its summary lines said,
+its progress on the console (progress.py); a stage made once and reused (stage_once), a preset's
+run stamped with its variables and continued on --resume (stage_run, resume.py); the folders the
+launcher makes (fresh_dir) and the Python it runs (run_python, run_script).
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from . import ROOT, LaunchError, lammps, progress, resume as resumed
+
+# the lines of a stage's screen output that the launcher repeats (the decks' summaries)
+SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSION PART|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
+MARKER = ".tbags-run"    # in every output folder the launcher made (so --out never clears a user's)
+PROGRESS_DEFAULT = 600    # s between a stage's progress lines on the console (--progress; 0: none)
+PROGRESS_EVERY = PROGRESS_DEFAULT
+
+
+def run_python(args, stdout=None):
+    """Debian's Python on a module or script of the repository, postprocess/ on its path."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "postprocess")] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
+    proc = subprocess.run([sys.executable] + [str(a) for a in args], env=env, stdout=stdout,
+                          stderr=subprocess.PIPE, text=True)
+    return proc.returncode == 0, proc.stderr
+
+
+def run_script(name, args, say):
+    """inputs/<name> (a check or a projection) on args; says its output; (succeeded, stdout)."""
+    proc = subprocess.run([sys.executable, ROOT / "inputs" / name] + [str(a) for a in args],
+                          capture_output=True, text=True)
+    for line in (proc.stdout + proc.stderr).splitlines():
+        say(line)
+    return proc.returncode == 0, proc.stdout
+
+
+def stage(folder, deck, ranks, variables, say):
+    """inputs/in.<deck> in folder with `ranks` ranks; says its summary lines; stops if it fails.
+    Its progress goes to the console every PROGRESS_EVERY seconds (progress.py)."""
+    say("tbags shear: %s in %s ..." % (deck, folder))
+    screen = "screen.%s.txt" % deck
+    with progress.Watch(Path(folder) / screen, "%s in %s" % (deck, folder), PROGRESS_EVERY,
+                        lambda line: print(line, flush=True)):
+        res = lammps.run(ROOT / "inputs" / ("in." + deck), folder, ranks, variables,
+                         log="log." + deck, screen=screen)
+    report(res, "the %s stage" % deck, Path(folder) / ("log." + deck), say)
+
+
+def report(res, what, log, say):
+    """A finished stage: its summary lines said, or LaunchError with its ERROR lines (else its
+    output's end) when it failed."""
+    lines = res.output.splitlines()
+    if res.returncode != 0:
+        errors = [line for line in lines if "ERROR" in line] or lines[-20:]
+        raise LaunchError("\n".join(errors) + "\nshear: %s failed (see %s)" % (what, log))
+    for line in lines:
+        if SUMMARY.match(line):
+            say("  " + line)
+
+
+def fresh_dir(folder):
+    """An empty folder for a run's outputs. A non-empty folder outside runs/ must be one the
+    launcher made (its marker), so that --out never clears a folder of the user's."""
+    folder = Path(folder)
+    if folder.is_dir() and any(folder.iterdir()) and not (folder / MARKER).exists() and \
+            (ROOT / "runs") not in folder.resolve().parents:
+        raise LaunchError("shear: %s is not empty and was not made by ./tbags shear; choose another "
+                          "--out" % folder)
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    (folder / MARKER).touch()
+
+
+def stage_once(folder, deck, ranks, variables, say, product):
+    """stage(), unless an earlier call made `product` in folder with the same variables (a stamp
+    beside it), so that a long stage that finished is not run again."""
+    stamp = Path(folder) / (".%s.vars" % deck)
+    key = vars_key(variables)
+    if (Path(folder) / product).is_file() and stamp.is_file() and stamp.read_text() == key:
+        say("tbags shear: %s in %s: done before, reused" % (deck, folder))
+        return
+    stamp.unlink(missing_ok=True)
+    stage(folder, deck, ranks, variables, say)
+    stamp.write_text(key)
+
+
+def vars_key(variables):
+    return json.dumps({k: str(v) for k, v in variables.items()}, sort_keys=True)
+
+
+def stage_run(folder, deck, ranks, variables, say, resume=False, origin=""):
+    """One of a preset's runs (stage()), its variables stamped beside it. resume: a run that
+    finished before with the same variables is kept, an interrupted one continues from its
+    checkpoint (resume.py; the older checkpoint if the newer does not read), else it starts
+    again; a run made with other variables (or another origin: its fill's) is not resumed."""
+    folder = Path(folder)
+    stamp = folder / (".%s.vars" % deck)
+    key = vars_key(variables) + origin
+    if resume and stamp.is_file():
+        if stamp.read_text() != key:
+            raise LaunchError("shear: --resume: %s was run with other -var values or another fill "
+                              "(%s); run without --resume to start it again" % (folder, stamp))
+        if resumed.finished(folder, deck):
+            say("tbags shear: %s in %s: finished before, kept" % (deck, folder))
+            return
+        tries = resumed.checkpoints(folder, deck)
+        for k, (name, extra) in enumerate(tries):
+            say("tbags shear: %s in %s: resuming from %s" % (deck, folder, name))
+            resumed.set_aside(folder, deck)
+            try:
+                stage(folder, deck, ranks, dict(variables, **extra), say)
+            except LaunchError as e:
+                if k + 1 == len(tries):
+                    raise
+                say("%s\n  (resuming from %s failed; the older checkpoint next)" % (e, name))
+                continue
+            resumed.merge_csv(folder / resumed.CSV[deck])
+            return
+    resumed.forget(folder, deck)
+    folder.mkdir(parents=True, exist_ok=True)
+    stamp.write_text(key)    # before the run: its checkpoints belong to these variables
+    stage(folder, deck, ranks, variables, say)
+
+
+def made_part(part_stage, where):
+    """The loads' shared part of the compression made once (stage_once's arguments, part_stage);
+    its checkpoint's path from the folder `where` (a run's, for -var compress_from)."""
+    stage_once(*part_stage)
+    return os.path.relpath(Path(part_stage[0]) / part_stage[-1], where)
