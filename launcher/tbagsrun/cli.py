@@ -22,6 +22,7 @@ the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufi
 fill and shared compression are reused, a run that finished is kept, and a run with a checkpoint
 continues from it (in.shear's shear.restart.1/2, the newer one; in.cyclic's cyclic.restart.aK at
 amplitude K + 1), its CSV keeping the rows up to the checkpoint; a run with neither starts again.
+Without --resume, a run whose checkpoints are in its folder is refused (remove them to start it again).
 --progress SECONDS: a long stage's progress on the console this often (% done and the time
 left; default 600, 0 for none).
 Presets of several loads (trends, cyclic, paper) compress once to 0.9 of the smallest load's F_v

@@ -55,11 +55,10 @@ def set_aside(folder, deck):
 
 
 def forget(folder, deck):
-    """A run starting again: its earlier checkpoints, CSV and dumps removed (a later --resume must
-    not continue them, nor the figures read them)."""
+    """A run starting again (with no checkpoint): its earlier CSV and dumps removed (the figures
+    must not read them)."""
     folder = Path(folder)
-    names = [f for f, _ in checkpoints(folder, deck)] + [CSV[deck]]
-    for f in [folder / n for n in names] + list(folder.glob("dump.*")):
+    for f in [folder / CSV[deck]] + list(folder.glob("dump.*")):
         f.unlink(missing_ok=True)
 
 

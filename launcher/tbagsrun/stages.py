@@ -96,7 +96,8 @@ def stage_run(folder, deck, ranks, variables, say, resume=False, origin=""):
     """One of a preset's runs (stage()), its variables stamped beside it. resume: a run that
     finished before with the same variables is kept, an interrupted one continues from its
     checkpoint (resume.py; the older checkpoint if the newer does not read), else it starts
-    again; a run made with other variables (or another origin: its fill's) is not resumed."""
+    again; a run made with other variables (or another origin: its fill's) is not resumed. A
+    run's checkpoints are never removed to start it again: that stops with what to do."""
     folder = Path(folder)
     stamp = folder / (".%s.vars" % deck)
     key = vars_key(variables) + origin
@@ -120,6 +121,11 @@ def stage_run(folder, deck, ranks, variables, say, resume=False, origin=""):
                 continue
             resumed.merge_csv(folder / resumed.CSV[deck])
             return
+    kept = [name for name, _ in resumed.checkpoints(folder, deck)]
+    if kept:    # hours of a run are not removed unasked
+        raise LaunchError("shear: %s holds an earlier run's checkpoints (%s): %s, or remove them to "
+                          "run it again" % (folder, ", ".join(kept), "they have no stamp of their "
+                          "-var values to resume from" if resume else "--resume continues or keeps it"))
     resumed.forget(folder, deck)
     folder.mkdir(parents=True, exist_ok=True)
     stamp.write_text(key)    # before the run: its checkpoints belong to these variables

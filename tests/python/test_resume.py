@@ -87,12 +87,19 @@ def test_stage_run_resumes_keeps_and_refuses(tmp_path, monkeypatch):
         stages.stage_run(run, "shear", 2, dict(v, Fpaper=3730), said.append, resume=True, origin="fill A")
     with pytest.raises(LaunchError, match="another fill"):
         stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill B")
-    # without --resume: from the start, the old checkpoints, CSV and dumps gone first
-    touch(run / "shear.restart.2")
+    # without --resume: refused while the run's checkpoints are there (hours of work)
+    with pytest.raises(LaunchError, match=r"holds an earlier run's checkpoints \(shear.restart.1\): --resume"):
+        stages.stage_run(run, "shear", 2, v, said.append, origin="fill A")
+    # removed by the user: from the start, the old CSV and dumps gone first
+    (run / "shear.restart.1").unlink()
     touch(run / "dump.grains.100")
     stages.stage_run(run, "shear", 2, v, said.append, origin="fill A")
-    assert "restart" not in fake.calls[-1] and not (run / "shear.restart.2").exists()
+    assert "restart" not in fake.calls[-1] and len(fake.calls) == 3
     assert not (run / "dump.grains.100").exists() and (run / "shear.csv").read_text() == "time_s,S_N\n0.0,1\n"
+    # checkpoints without a stamp (an older launcher's run): not removed on --resume either
+    (run / ".shear.vars").unlink()
+    with pytest.raises(LaunchError, match="no stamp of their -var values"):
+        stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
 
 
 def test_unreadable_checkpoint_falls_back_to_the_older(tmp_path, monkeypatch):
