@@ -6,8 +6,14 @@ amplitude K, the highest first, resumed at amplitude K + 1); any other run start
 resumed deck appends to the run's CSV, after rows the interrupted run may have written past its
 checkpoint: merge_rows() keeps, for every stretch of time, the rows written last.
 """
-from pathlib import Path
 import re
+import sys
+from pathlib import Path
+
+from . import ROOT
+
+sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost import superseded  # noqa: E402  (the rule the CSV readers apply too)
 
 FINISHED = {"shear": "SHEARED:", "cyclic": "CYCLED:"}    # the deck's last summary line
 CSV = {"shear": "shear.csv", "cyclic": "cyclic.csv"}
@@ -64,26 +70,23 @@ def forget(folder, deck):
 
 def merge_rows(lines):
     """A CSV's lines (a header, comment lines, rows whose first field is the time) with the rows
-    of every resumed stretch in place of those the interrupted run wrote for the same times: a
-    row whose time is not past the row before it starts a resumed stretch, and the rows before
-    it at its time or later are dropped. A comment line repeated (the resumed deck's title) is
-    kept once."""
-    out, seen, last = [], set(), None
+    of every resumed stretch in place of those the interrupted run wrote for the same times
+    (tbagspost.superseded: a row is dropped when a later row is at its time or earlier). A
+    comment line repeated (the resumed deck's title) is kept once."""
+    out, seen, times = [], set(), []
     for line in lines:
         if not line.strip():
             continue
         try:
-            t = float(line.split(",", 1)[0])
+            times.append(float(line.split(",", 1)[0]))
         except ValueError:    # the header or a comment
             if line not in seen:
                 seen.add(line)
-                out.append((None, line))
+                out.append((False, line))
             continue
-        if last is not None and t <= last + TIME_TOL:    # a resumed stretch starts
-            out = [(s, l) for s, l in out if s is None or s < t - TIME_TOL]
-        out.append((t, line))
-        last = t
-    return [line for _, line in out]
+        out.append((True, line))
+    drop = iter(superseded(times, TIME_TOL))
+    return [line for row, line in out if not (row and next(drop))]
 
 
 def merge_csv(path):

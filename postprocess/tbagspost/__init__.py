@@ -46,3 +46,16 @@ def read_columns(path, columns, maker):
     if d.dtype.names is None or not set(columns) <= set(d.dtype.names):
         fail("%s lacks the columns %s" % (path, ", ".join(columns)))
     return d
+
+
+def superseded(times, tol=0.0):
+    """The rows of a resumed run's CSV that a later row rewrote: a resumed deck appends from its
+    checkpoint's time, so a row is superseded when some later row is at its time or earlier
+    (within tol). times: the rows' times in file order; returns a boolean array."""
+    import numpy as np
+
+    times = np.asarray(times, dtype=float)
+    if len(times) == 0:
+        return np.zeros(0, dtype=bool)
+    later_min = np.minimum.accumulate(times[::-1])[::-1]
+    return np.append(times[:-1] >= later_min[1:] - tol, False)

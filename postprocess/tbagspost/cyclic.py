@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import fail, hysteresis, read_columns, style
+from tbagspost import fail, hysteresis, read_columns, style, superseded
 
 COLUMNS = ("time_s", "amp", "cycle", "ua_mm", "u_mm", "w_mm", "S_N", "Fv_N")
 LOG_AMP = re.compile(r"^AMPLITUDE (\d+) of \d+: u_a (\S+) mm, f (\S+) Hz .*peak speed (\S+) mm/s, "
@@ -31,9 +31,7 @@ def read_csv(path):
     if len(d) < 2:
         fail("%s has fewer than two rows (truncated run?)" % path)
     # a resumed run restarts the time: keep a row only if every later row is later in time
-    later_min = np.minimum.accumulate(d["time_s"][::-1])[::-1]
-    keep = np.append(d["time_s"][:-1] < later_min[1:], True)
-    return d[keep]
+    return d[~superseded(d["time_s"])]
 
 
 class CyclicRun:
