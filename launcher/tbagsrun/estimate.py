@@ -6,7 +6,7 @@ import shutil
 import sys
 from pathlib import Path
 
-from . import ROOT, LaunchError
+from . import ROOT, LaunchError, resume
 from .presets import DECOMPOSITIONS, ESTIMATE
 from .stages import made_part, run_script, stage, stage_once
 
@@ -40,7 +40,7 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
         for line in projection.read_text().splitlines()[:5]:
             say(line)
         return
-    restart = max((folder / "state").glob("shear.restart.*"), key=lambda f: f.stat().st_mtime).name
+    restart = resume.checkpoints(folder / "state", "shear")[0][0]    # the newer
     timed = round(e["u_timed"] / (e["v"] * float(log_timestep(folder / "state" / "log.shear"))))
     say("tbags shear paper: timing %d shear steps of the paper bag at %s rank(s) ..."
         % (timed, " and ".join(map(str, counts))))

@@ -42,11 +42,11 @@ def stage(folder, deck, ranks, variables, say):
     """inputs/in.<deck> in folder with `ranks` ranks; says its summary lines; stops if it fails.
     Its progress goes to the console every PROGRESS_EVERY seconds (progress.py)."""
     say("tbags shear: %s in %s ..." % (deck, folder))
-    screen = "screen.%s.txt" % deck
-    with progress.Watch(Path(folder) / screen, "%s in %s" % (deck, folder), PROGRESS_EVERY,
+    screen = resumed.screen_file(folder, deck)
+    with progress.Watch(screen, "%s in %s" % (deck, folder), PROGRESS_EVERY,
                         lambda line: print(line, flush=True)):
         res = lammps.run(ROOT / "inputs" / ("in." + deck), folder, ranks, variables,
-                         log="log." + deck, screen=screen)
+                         log="log." + deck, screen=screen.name)
     report(res, "the %s stage" % deck, Path(folder) / ("log." + deck), say)
 
 
