@@ -86,6 +86,7 @@ void BondBPMYarn::allocate()
 
 void BondBPMYarn::settings(int narg, char **arg)
 {
+  create_history_store();
   BondBPM::settings(narg, arg);
   // BondBPM leaves the words it does not know, one by one: ours is "kernel" and its value
   std::string kernel = "auto";
@@ -121,6 +122,7 @@ void BondBPMYarn::coeff(int narg, char **arg)
 
 void BondBPMYarn::init_style()
 {
+  create_history_store();    // after read_restart, which does not call settings()
   BondBPM::init_style();
   // the chain's build: AVX2 where the CPU has it, unless kernel baseline (also after
   // read_restart, which does not call settings())
@@ -142,6 +144,22 @@ void BondBPMYarn::init_style()
       modify->get_fix_by_style("^nve/bpm/sphere").empty() && comm->me == 0 && !warned_integrator++)
     error->warning(FLERR, "{}: particles with bending/twisting bonds need their rotations "
                    "integrated: fix nve/sphere (or nve/bpm/sphere)", STYLE);
+}
+
+/* ----------------------------------------------------------------------
+   the bonds' history store: ours (fix_bond_history_tbags.h, a checkpoint leaves the run as it
+   was), in the place BondBPM keeps for LAMMPS's, before BondBPM would create that one
+------------------------------------------------------------------------- */
+
+void BondBPMYarn::create_history_store()
+{
+  if (fix_bond_history) return;
+  Fix *fix = modify->replace_fix(id_fix_dummy_history,
+                                 fmt::format("{} all BOND_HISTORY/TBAGS {} {}", id_fix_bond_history,
+                                             update_flag, nhistory), 1);
+  fix_bond_history = dynamic_cast<FixBondHistory *>(fix);
+  delete[] id_fix_dummy_history;
+  id_fix_dummy_history = nullptr;
 }
 
 /* ----------------------------------------------------------------------

@@ -44,6 +44,7 @@ class BondBPMYarn : public BondBPM {
   void allocate();
   void store_data();
   bool bond_history(int i, int j, double *hist);
+  void create_history_store();
   // the law's view of the bond i-j (ends ordered by the caller)
   tbags::yarn::Bond bond_state(int i, int j) const
   {

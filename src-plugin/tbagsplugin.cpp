@@ -5,6 +5,7 @@
 
 #include "bond_bpm_yarn.h"
 #include "bond_yarn.h"
+#include "fix_bond_history_tbags.h"
 #include "fix_neigh_history_tbags.h"
 #include "fix_wall_gran_servo.h"
 #include "pair_gran_hertz_rolling.h"
@@ -28,6 +29,11 @@ static Fix *fix_wall_gran_servo_creator(LAMMPS *lmp, int argc, char **argv)
 static Fix *fix_neigh_history_tbags_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixNeighHistoryTbags(lmp, argc, argv);
+}
+
+static Fix *fix_bond_history_tbags_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixBondHistoryTbags(lmp, argc, argv);
 }
 
 static Bond *bond_bpm_yarn_creator(LAMMPS *lmp)
@@ -64,6 +70,12 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "NEIGH_HISTORY/TBAGS";
   plugin.info = "tbags " TBAGS_VERSION ": contact history of gran/hertz/rolling (internal)";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_neigh_history_tbags_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  // internal: the bond history store that bond_style bpm/yarn creates
+  plugin.name = "BOND_HISTORY/TBAGS";
+  plugin.info = "tbags " TBAGS_VERSION ": bond history of bpm/yarn, kept across checkpoints (internal)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_bond_history_tbags_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "bond";
