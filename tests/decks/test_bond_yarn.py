@@ -323,8 +323,8 @@ write_dump all custom sheet_restart.dump id x y z vx vy vz modify sort id format
 """.replace("PULL_ENDS\n", PULL_ENDS)
 
 
-def sheet(wd, data, ranks=1, newton_bond="off", checkpoint=False, neigh="", midrun=""):
-    res = lmprun.run(SHEET, wd, np_ranks=ranks, variables={
+def sheet(wd, data, ranks=1, newton_bond="off", checkpoint=False, neigh="", midrun="", deck=SHEET):
+    res = lmprun.run(deck, wd, np_ranks=ranks, variables={
         "data": data, "newton_bond": newton_bond, "n1": 1000, "n2": 1500, "neigh": neigh,
         "midrun": midrun, "checkpoint": "write_restart sheet.restart" if checkpoint else ""}).check()
     bonds = float([l for l in res.output.splitlines() if l.startswith("BONDS")][-1].split()[1])
@@ -369,8 +369,7 @@ def test_sheet_same_with_the_baseline_kernel(tmp_path, sheet_data, sheet_ref):
     bits, so the same sheet, torn the same way."""
     wd, bonds = sheet_ref
     deck = SHEET.replace("bond_style bpm/yarn overlay/pair yes", "bond_style bpm/yarn overlay/pair yes kernel baseline")
-    res = lmprun.run(deck, tmp_path, variables={"data": sheet_data, "newton_bond": "off", "n1": 1000,
-                                                "n2": 1500, "checkpoint": "", "neigh": "", "midrun": ""}).check()
+    res, _ = sheet(tmp_path, sheet_data, deck=deck)
     assert "batch kernel baseline" in res.output
     assert (tmp_path / "sheet.dump").read_bytes() == (wd / "sheet.dump").read_bytes()
 
@@ -400,19 +399,17 @@ def test_sheet_checkpoints_during_the_run_change_nothing(tmp_path, sheet_data, r
     ours keeps it (fix_bond_history_tbags.h). Both runs reneighbor every 10 steps: LAMMPS also
     reneighbors where it writes a checkpoint, which alone reorders the sums (round-off)."""
     neigh = "neigh_modify every 10 delay 0 check no"
-    out = {}
-    for midrun in ("", "restart 100 sheet.a.restart sheet.b.restart"):
-        wd = tmp_path / ("restart" if midrun else "plain")
-        res, b = sheet(wd, sheet_data, ranks, newton_bond, neigh=neigh, midrun=midrun)
-        out[midrun] = (wd / "sheet.dump").read_bytes(), b
-    assert (tmp_path / "restart" / "sheet.b.restart").exists()
-    (plain, b0), (chk, b1) = out.values()
-    cols, a = lmprun.read_dump(tmp_path / "plain" / "sheet.dump")
-    _, r = lmprun.read_dump(tmp_path / "restart" / "sheet.dump")
+    plain, chk = tmp_path / "plain", tmp_path / "restart"
+    _, b0 = sheet(plain, sheet_data, ranks, newton_bond, neigh=neigh)
+    _, b1 = sheet(chk, sheet_data, ranks, newton_bond, neigh=neigh,
+                  midrun="restart 100 sheet.a.restart sheet.b.restart")
+    assert (chk / "sheet.b.restart").exists()
+    cols, a = lmprun.read_dump(plain / "sheet.dump")
+    _, r = lmprun.read_dump(chk / "sheet.dump")
     x = [cols.index(c) for c in ("x", "y", "z")]
     print("ranks=%d newton_bond=%s, checkpoints every 100 steps: bonds %d vs %d, max |dx| = %.3e m"
           % (ranks, newton_bond, b1, b0, np.abs(a[:, x] - r[:, x]).max()))
-    assert b0 == b1 and chk == plain
+    assert b0 == b1 and (chk / "sheet.dump").read_bytes() == (plain / "sheet.dump").read_bytes()
 
 
 def test_sheet_restart_continues(sheet_ref):
