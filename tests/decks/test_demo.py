@@ -2,8 +2,8 @@
 filled (seed 4821) and sheared with the preset's protocol (5.5 kN's stress, F_v 318.14 N, 15 mm/s
 to 5 mm) on 1 rank. The figures it reports, measured as tbagspost.realizations measures them,
 must fall inside the spread of the committed realizations (inputs/results/demo-realizations.csv,
-three fills: S at 5 mm 567 +- 18 N, contraction 0.148 +- 0.012 mm): within 3 standard
-deviations of their mean, at least the half-range of the three plus 5 % of the mean; F_v
+six fills: S at 5 mm 551 +- 17 N, contraction 0.156 +- 0.008 mm): within 3 standard
+deviations of their mean, at least the half-range of the fills plus 5 % of the mean; F_v
 within 0.5 % of its target; no yarn breaks. A change of physics that moves the result by more
 than the realizations' own scatter fails here."""
 import csv

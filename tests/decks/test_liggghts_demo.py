@@ -3,7 +3,7 @@ LAMMPS's inputs/in.shear and LIGGGHTS's inputs/liggghts/in.shear. A run from one
 sample, and two engines that compute the same law to round-off still part ways in a packing, so
 their results must agree as two samples of one packing could: within the spread that different
 packings (realizations) give, as measured and committed in inputs/results/demo-realizations.csv
-(3 fills: S at 5 mm 567 +- 18 N, contraction 0.148 +- 0.012 mm). Checked: S at u = 5 mm and the
+(6 fills: S at 5 mm 551 +- 17 N, contraction 0.156 +- 0.008 mm). Checked: S at u = 5 mm and the
 contraction (tbagspost.realizations' figures of a run) within 2 standard deviations of that
 spread, and F_v held within 1 % in both. About 10 minutes (1 rank each, LIGGGHTS most of it)."""
 import csv
