@@ -140,10 +140,11 @@ def parse(argv):
                    progress_every)
 
 
-def set_up():
-    """Build the plugin if needed (./tbags setup --plugin-only) and take lmp's and the plugin's
-    places from the build's tbags-env.sh."""
-    subprocess.run([str(ROOT / "tbags"), "setup", "--plugin-only"], check=True)
+def set_up(liggghts=False):
+    """Build the plugin if needed (./tbags setup --plugin-only; LIGGGHTS too when the runs need
+    it) and take lmp's and the plugin's places from the build's tbags-env.sh."""
+    subprocess.run([str(ROOT / "tbags"), "setup", "--plugin-only"] + (["--liggghts"] if liggghts else []),
+                   check=True)
     build = Path(os.environ.get("TBAGS_BUILD_DIR") or ROOT / "build")
     for line in (build / "tbags-env.sh").read_text().splitlines():
         if "=" in line:
@@ -161,7 +162,7 @@ def shear(argv):
         raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(o.extra))
     out = o.out or ROOT / "runs" / (o.preset.folder + ("-liggghts" if o.engine == "liggghts" else ""))
     stages.PROGRESS_EVERY = o.progress_every
-    set_up()
+    set_up(o.engine == "liggghts")
 
     def say(line):
         print(line, flush=True)

@@ -10,9 +10,6 @@ from . import ROOT, LaunchError, resume
 from .presets import DECOMPOSITIONS, ESTIMATE
 from .stages import made_part, run_script, stage, stage_once
 
-sys.path.insert(0, str(ROOT / "postprocess"))
-from tbagspost.run import log_timestep  # noqa: E402  (the reader of the decks' TIMESTEP line)
-
 
 def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
     """The paper run's cost measured on its own bag (fill_vars: its size and the user's -var
@@ -23,6 +20,8 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
     at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
     scaling model); then the projection (inputs/project_time.py). reuse: an earlier projection
     is said again instead of timing anew."""
+    sys.path.insert(0, str(ROOT / "postprocess"))
+    from tbagspost.run import log_timestep    # the decks' TIMESTEP line (numpy: after set-up)
     counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
     folder = Path(out) / "estimate"
     stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
