@@ -10,11 +10,11 @@ from pathlib import Path
 
 from . import ROOT, LaunchError
 from .presets import PRESETS
-from . import stages
-from .shear import run_preset, run_realizations
+from . import stages, variables
+from .shear import decide, run_preset, run_realizations
 
 USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)]
-                    [--resume] [--progress SECONDS] [--engine lammps|liggghts] [-var name value ...]
+                    [--resume | --overwrite] [--progress SECONDS] [--engine lammps|liggghts] [-var name value ...]
 Bag (inputs/in.bag), fill (in.fill), simple shear (in.shear), then figures. -var values override
 the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufinal, dt, seed...).
 --out DIR: write there instead of runs/<preset>/ (runs/shear-demo/ for demo).
@@ -22,9 +22,12 @@ the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufi
 fill and shared compression are reused, a run that finished is kept, and a run with a checkpoint
 continues from it (in.shear's shear.restart.1/2, the newer one; in.cyclic's cyclic.restart.aK at
 amplitude K + 1), its CSV keeping the rows up to the checkpoint; a run with neither starts again.
-Without --resume, a run whose checkpoints are in its folder is refused (remove them to start it again).
---progress SECONDS: a long stage's progress on the console this often (% done and the time
-left; default 600, 0 for none).
+A call never removes or rewrites an earlier call's files unasked: into a folder that holds runs,
+without --resume, or with --resume and other -var values, it is refused before anything runs.
+--overwrite: empty the output folder first and start again (never a folder ./tbags did not make).
+--progress SECONDS: a stage's progress on the console, at least this often and 10 % of the stage
+apart, whichever is later (% done and the time left measured from the stage's rate; default 30,
+0 for none).
 Presets of several loads (trends, cyclic, paper) compress once to 0.9 of the smallest load's F_v
 (in compress/) and continue each load from there (-var compress_to P sets the fraction, 0: each
 load compresses by itself).
@@ -67,6 +70,7 @@ class Options:
     extra: list          # other words (LAMMPS switches: refused)
     engine: str
     resume: bool
+    overwrite: bool
     progress_every: int  # s
 
 
@@ -81,7 +85,7 @@ def parse(argv):
                               % (name, ", ".join(PRESETS)))
         preset = PRESETS[name]
     ranks, out, nreal, estimate, seed = len(os.sched_getaffinity(0)), None, 1, False, 4821
-    engine, resume, progress_every = "lammps", False, stages.PROGRESS_DEFAULT
+    engine, resume, overwrite, progress_every = "lammps", False, False, stages.PROGRESS_DEFAULT
     variables, extra = {}, []
     while args:
         a = args.pop(0)
@@ -91,6 +95,8 @@ def parse(argv):
             estimate = True
         elif a == "--resume":
             resume = True
+        elif a == "--overwrite":
+            overwrite = True
         elif a == "--progress":
             text = args.pop(0) if args else ""
             if not text.isdigit():
@@ -112,11 +118,11 @@ def parse(argv):
             if not args or args[0].startswith("-"):
                 raise LaunchError("shear: -var needs a name and a value")
             name = args.pop(0)
-            values = []
-            while args and not args[0].startswith("-"):
-                values.append(args.pop(0))
-            if not values:
+            if not args:
                 raise LaunchError("shear: -var %s needs a value" % name)
+            values = [args.pop(0)]    # any word, a negative number too (the checks judge it)
+            while args and not is_option(args[0]):
+                values.append(args.pop(0))
             if name == "seed":
                 seed = positive("-var seed", values[0], "a positive integer")
             else:
@@ -133,11 +139,22 @@ def parse(argv):
     if engine == "liggghts" and (preset.estimate or any(r.deck != "shear" for r in preset.runs)):
         raise LaunchError("shear: --engine liggghts runs the shear test only (presets demo, trends, "
                           "quasistatic); LIGGGHTS has no decks for %s yet" % preset.name)
+    if resume and overwrite:
+        raise LaunchError("shear: --resume keeps an earlier call's runs, --overwrite removes them: give one")
     if resume and (engine != "lammps" or estimate):
         raise LaunchError("shear: --resume continues LAMMPS runs of a preset (not with --engine "
                           "liggghts or --estimate)")
     return Options(preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume,
-                   progress_every)
+                   overwrite, progress_every)
+
+
+def is_option(word):
+    """A word that starts an option (-var, -np, --out ...), not a value such as -1 or -2.5e-3."""
+    try:
+        float(word)
+        return False
+    except ValueError:
+        return word.startswith("-")
 
 
 def set_up(liggghts=False):
@@ -162,15 +179,18 @@ def shear(argv):
         raise LaunchError("shear: %s: only -var name value goes to the decks" % " ".join(o.extra))
     out = o.out or ROOT / "runs" / (o.preset.folder + ("-liggghts" if o.engine == "liggghts" else ""))
     stages.PROGRESS_EVERY = o.progress_every
+    variables.check(o.preset, o.variables)    # every value, before anything is made
+    decide(o.preset, out, o.variables, o.nreal, o.seed, o.engine, o.resume, o.overwrite, o.estimate)
     set_up(o.engine == "liggghts")
 
     def say(line):
         print(line, flush=True)
     if o.nreal > 1:
-        run_realizations(o.preset, o.nreal, o.seed, o.ranks, out, o.variables, say, o.engine, o.resume)
+        run_realizations(o.preset, o.nreal, o.seed, o.ranks, out, o.variables, say, o.engine, o.resume,
+                         decided=True)
     else:
         run_preset(o.preset, o.ranks, out, dict(o.variables, seed=o.seed), say, estimate_only=o.estimate,
-                   engine=o.engine, resume=o.resume)
+                   engine=o.engine, resume=o.resume, decided=True)
 
 
 def main(argv):

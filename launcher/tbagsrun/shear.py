@@ -10,16 +10,17 @@ The paper preset first measures a short stretch of its own bag and projects its 
 scaling over ranks (estimate.py). engine "liggghts": the shear runs in LIGGGHTS instead
 (liggghts_stage.py). One stage, its reuse and its --resume: stages.py.
 """
+import os
 import re
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from . import LaunchError
+from . import LaunchError, guard
 from .estimate import estimate_paper
 from .liggghts_stage import stage_liggghts
 from .presets import COMPRESS_SHARED, Run
-from .stages import MARKER, fresh_dir, made_part, run_python, run_script, stage_once, stage_run
+from .stages import run_python, run_script, stage_once, stage_run, vars_key
 
 
 def side_by_side(jobs, say):
@@ -71,51 +72,84 @@ def shared_compression(preset, user, engine):
     return Run("compress", lightest.deck, dict(lightest.variables, compress_to=fraction))
 
 
+def plan(preset, out, user, engine="lammps"):
+    """Every stage of one realization in `out`, in the order they run (guard.Stage): the bag and
+    the fill, the loads' shared start of compression (if the preset has one), then its runs with
+    the variables each gets."""
+    out = Path(out)
+    fill_vars = dict(preset.bag, **user)
+    stages = [guard.Stage(out, "bag", fill_vars, "bag.data"), guard.Stage(out, "fill", fill_vars, "fill.data")]
+    part = shared_compression(preset, user, engine)
+    each_user = user
+    if part:
+        folder = run_folder(out, part)
+        stages.append(guard.Stage(folder, part.deck, run_variables(preset, part, user), "compress.restart"))
+        each_user = {k: v for k, v in user.items() if k != "compress_to"}    # the part's only
+        each_user["compress_from"] = os.path.relpath(folder / "compress.restart", run_folder(out, preset.runs[0]))
+    for run in preset.runs:
+        stages.append(guard.Stage(run_folder(out, run), run.deck, run_variables(preset, run, each_user)))
+    return stages
+
+
+def decide(preset, out, user, nreal=1, seed=4821, engine="lammps", resume=False, overwrite=False,
+           estimate_only=False):
+    """What the call does to `out`, decided before anything runs (guard.check): refused if it
+    would remove or rewrite an earlier call's files, `out` emptied first with overwrite."""
+    out = Path(out)
+    if nreal > 1:
+        groups = []
+        for k in range(1, nreal + 1):
+            mine = dict(user, seed=seed + k - 1)
+            groups.append((plan(preset, out / ("r%d" % k), mine, engine), vars_key(dict(preset.bag, **mine))))
+    else:
+        mine = dict(user, seed=seed) if "seed" not in user else user
+        stages = plan(preset, out, mine, engine)
+        groups = [(stages[:-len(preset.runs)] if estimate_only else stages, vars_key(dict(preset.bag, **mine)))]
+    guard.check(out, groups, resume, overwrite)
+
+
 def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False,
-               engine="lammps", resume=False):
+               engine="lammps", resume=False, overwrite=False, decided=False):
     """One realization of a preset into `out`; user: the -var values given (they win); engine:
     where the shear runs go (the bag and the fill are LAMMPS's); resume: continue the runs of an
-    earlier call in `out` (stage_run), its bag, fill and shared compression reused."""
+    earlier call in `out` (stage_run), its bag, fill and shared compression reused; overwrite:
+    empty `out` first. Decided before any stage runs (guard.check): a call that would remove or
+    rewrite an earlier call's files is refused (decided: the caller did it, decide())."""
     t0 = time.time()
     out = Path(out)
     fill_vars = dict(preset.bag, **user)
-    # the loads' common start of compression, run once (each load continues from its checkpoint;
-    # the paper's estimate makes it first and continues its own checkpoint from it too)
-    part = shared_compression(preset, user, engine)
-    part_stage = part and (run_folder(out, part), part.deck, ranks, run_variables(preset, part, user), say,
-                           "compress.restart")
+    stages = plan(preset, out, user, engine)
+    origin = vars_key(fill_vars)    # the fill's stamp (a run resumes on the same fill)
+    if not (decided or in_realizations):
+        decide(preset, out, user, engine=engine, resume=resume, overwrite=overwrite, estimate_only=estimate_only)
+    guard.make(out)
+    bag, fill, *part, runs = stages[0], stages[1], *stages[2:-len(preset.runs)], stages[-len(preset.runs):]
+    part_stage = part and (part[0].folder, part[0].deck, ranks, part[0].variables, say, part[0].product)
     if preset.estimate:
-        out.mkdir(parents=True, exist_ok=True)
         estimate_paper(out, fill_vars, ranks, say, part_stage, resume and not estimate_only)
         if estimate_only:
             return
-    elif not (resume and (out / MARKER).is_file()):
-        fresh_dir(out)
     for name, line in preset.defaults_said.items():
         if name not in user:
             say("tbags shear %s: %s" % (preset.name, line))
-    stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
-    stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
-    origin = (out / ".fill.vars").read_text()    # the fill's variables (a run resumes on the same fill)
-    each_user = user
-    if part:
-        each_user = {k: v for k, v in user.items() if k != "compress_to"}    # the part's only
-        each_user["compress_from"] = made_part(part_stage, run_folder(out, preset.runs[0]))
+    stage_once(out, "bag", ranks, bag.variables, say, bag.product)
+    stage_once(out, "fill", ranks, fill.variables, say, fill.product)
+    if part_stage:
+        stage_once(*part_stage)
 
-    def job(run, r):
+    def job(run, stage, r):
         if engine == "liggghts":
-            return lambda s: stage_liggghts(run_folder(out, run), r, run_variables(preset, run, user), s)
-        return lambda s: stage_run(run_folder(out, run), run.deck, r, run_variables(preset, run, each_user), s,
-                                   resume, origin)
+            return lambda s: stage_liggghts(stage.folder, r, stage.variables, s)
+        return lambda s: stage_run(stage.folder, stage.deck, r, stage.variables, s, resume, origin)
 
     if preset.side_by_side and len(preset.runs) > 1:
         each = max(1, ranks // len(preset.runs))
         say("tbags shear: %s side by side, %d rank(s) each ..."
             % (", ".join(r.folder for r in preset.runs), each))
-        side_by_side([job(r, each) for r in preset.runs], say)
+        side_by_side([job(r, st, each) for r, st in zip(preset.runs, runs)], say)
     else:
-        for r in preset.runs:
-            job(r, ranks)(say)
+        for r, st in zip(preset.runs, runs):
+            job(r, st, ranks)(say)
     post_process(preset, out, say, engine)
     check(preset, out, say, in_realizations)
     say("tbags shear %s: done in %d s. Outputs in %s:" % (preset.name, time.time() - t0, out))
@@ -167,14 +201,15 @@ def check(preset, out, say, in_realizations):
             raise LaunchError("trends: a finding did not hold (above)")
 
 
-def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps", resume=False):
+def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps", resume=False,
+                     overwrite=False, decided=False):
     """n realizations of a preset (fills of seeds seed, seed + 1, ...) in out/r1 ... out/rn, as
-    many at once as the cores allow, then their spread in out/realizations; resume: as
-    run_preset's, in each."""
+    many at once as the cores allow, then their spread in out/realizations; resume, overwrite:
+    as run_preset's, decided for all realizations before any runs."""
     t0 = time.time()
     out = Path(out)
-    if not (resume and (out / MARKER).is_file()):
-        fresh_dir(out)
+    if not decided:
+        decide(preset, out, user, n, seed, engine, resume, overwrite)
     per = len(preset.runs) if preset.side_by_side else 1    # runs of one realization at once
     slots = min(max(1, ranks // per), n)
     each = max(1, ranks // slots)

@@ -47,6 +47,12 @@ def test_paths_with_spaces(tmp_path):
     assert link.resolve() == repo.resolve() and " " not in str(link)
 
 
+def checksums(folder):
+    import hashlib
+    return {str(f.relative_to(folder)): hashlib.sha256(f.read_bytes()).hexdigest()
+            for f in sorted(folder.rglob("*")) if f.is_file()}
+
+
 def test_loads_share_one_compression(tmp_path):
     """A preset of three loads on one fill (as trends, paper and cyclic): the launcher compresses
     once to 0.9 of the smallest load (compress/), then each load continues from that checkpoint to
@@ -54,7 +60,7 @@ def test_loads_share_one_compression(tmp_path):
     import re
     from tbagsrun import shear
     from tbagsrun.presets import LOADS, Preset, per_load
-    from tbagspost.run import loops    # (postprocess/ is on the path through tbagsrun.estimate)
+    from tbagspost.run import loops    # (postprocess/ is on the path through tbagsrun.resume)
     preset = Preset("loads", "loads", lmprun.TINY_BAG, per_load("shear", v=0.02, ufinal=0.0003), True, "figures")
     said = []
     shear.run_preset(preset, 2, tmp_path / "out", {}, said.append)
@@ -102,6 +108,14 @@ def test_resume_an_interrupted_run(tmp_path):
         p.wait()
     assert (out / "shear.restart.1").is_file() and "SHEARED" not in (out / "screen.shear.txt").read_text()
     interrupted = (out / "shear.csv").read_text().count("\n") - 2    # rows (a header, a title)
+    # called again without --resume, or with --resume and another -var value: refused before
+    # anything runs, every file as it was (be13c81 removed the folder, or re-made the fill)
+    before = checksums(out)
+    for extra in ([], ["--resume", "-var", "e0", "0.70"], ["--resume", "-var", "v", "0.03"]):
+        r = subprocess.run(argv + extra, env=launcher_env(), capture_output=True, text=True, timeout=300)
+        assert r.returncode != 0 and "Nothing was changed" in r.stderr, r.stdout + r.stderr
+        assert ("--resume to continue" in r.stderr) == (not extra)
+        assert checksums(out) == before
     r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900)
     print(r.stdout[-3000:], r.stderr[-2000:])
     assert r.returncode == 0

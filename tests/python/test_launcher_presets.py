@@ -57,7 +57,7 @@ def test_parse_options_variables_and_seed():
     o = parse(["trends", "-np", "3", "--realizations", "2", "-var", "seed", "7", "-var", "amps", "0.25", "1",
                "-var", "v", "0.01"])
     assert (o.preset.name, o.ranks, o.nreal, o.seed, o.engine, o.resume, o.progress_every) == \
-        ("trends", 3, 2, 7, "lammps", False, 600)
+        ("trends", 3, 2, 7, "lammps", False, 30)
     assert o.variables == {"amps": ["0.25", "1"], "v": "0.01"} and not o.extra and o.out is None
     assert parse([]).preset.name == "demo"
     assert parse(["--engine", "liggghts"]).engine == "liggghts"

@@ -48,3 +48,31 @@ def test_watch_says_changes_while_the_block_runs(tmp_path):
     assert len(said) == n and threading.active_count() == 1    # stopped with the block
     with progress.Watch(screen, "x", 0, said.append) as w:    # 0: none
         assert w.thread is None
+
+
+def shear_row(step, pct, left):
+    return "%d 0.1 %g 0 -0.0019 10.0 212.0 0 %g\n" % (step, pct, left)
+
+
+def test_first_estimate_is_measured_and_lines_are_ten_percent_apart(tmp_path):
+    """LAMMPS's first row says 0 s left: the line says 'estimating', not 'about 0 min left'
+    (be13c81 on the demo); then the time left comes from the stage's own rate, and lines are
+    10 % of the stage apart even when polled often."""
+    screen = tmp_path / "screen.shear.txt"
+    head = SHEAR.splitlines()[0] + "\n"
+    screen.write_text(head + shear_row(1, 0.2, 0))
+    now = [0.0]
+    said = []
+    w = progress.Watch(screen, "shear", 0.01, said.append, clock=lambda: now[0])
+    with w:
+        now[0] = 1.0
+        time.sleep(0.1)
+        for k, pct in enumerate((3, 6, 12, 14, 25), start=1):
+            now[0] = 10.0 * k    # 10 s per row
+            screen.write_text(head + shear_row(100 * k, pct, 0 if pct < 12 else 999))
+            time.sleep(0.1)
+    assert said[0] == "  shear: 0 % of the shear (u 0.00 mm), time left: estimating"
+    pcts = [float(line.split(": ")[1].split(" %")[0]) for line in said]
+    assert all(b - a >= 10 for a, b in zip(pcts, pcts[1:])), said
+    # at 12 %: (12 - 0.2) % in 29 s -> 88 % in 216 s, about 4 min (not LAMMPS's 999 s)
+    assert "  shear: 12 % of the shear (u 0.00 mm), about 4 min left" in said, said
