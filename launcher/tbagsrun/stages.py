@@ -59,7 +59,22 @@ def report(res, what, log, say):
         raise LaunchError("\n".join(errors) + "\nshear: %s failed (see %s)" % (what, log))
     for line in lines:
         if SUMMARY.match(line):
-            say("  " + line)
+            say("  " + shear_w(line, Path(log).parent))
+
+
+def shear_w(line, folder):
+    """A SHEARED line with w from the start of shear too (the figures' w: the CSV's u = 0 row's
+    w subtracted; the deck's w counts from the start of compression)."""
+    m = re.search(r" w (\S+) mm from the start of compression", line)
+    csv = Path(folder) / "shear.csv"
+    if not (line.startswith("SHEARED") and m and csv.is_file()):
+        return line
+    rows = [r for r in csv.read_text().splitlines() if r[:1].isdigit()]
+    head = next((r for r in csv.read_text().splitlines() if r.startswith("time_s")), "")
+    if not rows or "w_mm" not in head.split(","):
+        return line
+    w0 = float(rows[0].split(",")[head.split(",").index("w_mm")])
+    return line.replace(m.group(0), "%s, %.3f mm from the start of shear" % (m.group(0), float(m.group(1)) - w0))
 
 
 def fresh_dir(folder):

@@ -8,17 +8,39 @@ import numpy as np
 from tbagspost import style
 
 
+def speed_mm_s(run):
+    """The shear speed of a run (mm/s): the median of du/dt over its CSV rows."""
+    d = run.csv
+    dt = np.diff(d["time_s"])
+    ok = dt > 0
+    return float(np.median(np.diff(d["u_mm"])[ok] / dt[ok])) if ok.any() else float("nan")
+
+
+def labels(runs):
+    """Each run's legend label: its F_v, and what else differs where F_v is the same (the shear
+    speed, else the run's folder)."""
+    out = [run.label for run in runs]
+    if len(set(out)) == len(out):
+        return out
+    out = ["%s, $v$ = %.3g mm/s" % (run.label, speed_mm_s(run)) for run in runs]
+    if len(set(out)) == len(out):
+        return out
+    return ["%s (%s)" % (run.label, run.name) for run in runs]
+
+
 def figure(runs, title=None):
     """Figure with S-u (left) and w-u (right) of the runs (tbagspost.run.Run); returns
     (Figure, stats) where stats has per run: peak S (kN) and its u, F_v, min and final w."""
     fig, (a_s, a_w) = style.figure(1, 2, width=7.0, height=2.8)
     stats = []
-    for run in runs:
+    band = False
+    for run, label in zip(runs, labels(runs)):
         d = run.csv
         u, s, w = d["u_mm"], d["S_N"] / 1000, d["w_mm"] - d["w_mm"][0]
-        line, = a_s.plot(u, s, label=run.label)
-        a_w.plot(u, w, label=run.label, color=line.get_color(), linestyle=line.get_linestyle())
+        line, = a_s.plot(u, s, label=label)
+        a_w.plot(u, w, label=label, color=line.get_color(), linestyle=line.get_linestyle())
         names = d.dtype.names
+        band = band or "S_min_N" in names
         if "S_min_N" in names and "S_max_N" in names:
             a_s.fill_between(u, d["S_min_N"] / 1000, d["S_max_N"] / 1000, color=line.get_color(),
                              alpha=0.15, lw=0)
@@ -37,7 +59,14 @@ def figure(runs, title=None):
     a_w.axhline(0, color="0.5", lw=0.6)
     for ax, tag in ((a_s, "(a)"), (a_w, "(b)")):
         ax.set_xlim(left=0)
-        ax.legend(loc="lower right" if ax is a_s else "best", frameon=False)
+        if band:    # say what the shading is
+            from matplotlib.patches import Patch
+            handles, texts = ax.get_legend_handles_labels()
+            ax.legend(handles + [Patch(color="0.5", alpha=0.3, lw=0)],
+                      texts + ["min-max within each output interval"],
+                      loc="lower right" if ax is a_s else "best", frameon=False, fontsize="small")
+        else:
+            ax.legend(loc="lower right" if ax is a_s else "best", frameon=False)
         style.panel_label(ax, tag)
     a_s.set_ylim(bottom=min(0.0, a_s.get_ylim()[0]))
     if title:

@@ -123,3 +123,13 @@ def test_liggghts_trace_must_cover_every_step(tmp_path):
     liggghts_outputs(tmp_path, TRACE[:2] + TRACE[3:])
     with pytest.raises(LaunchError, match="has 1 of the 2 steps 3-4"):
         means_to_csv(tmp_path / "m.txt", tmp_path / "shear.csv", tmp_path / "s.txt", tmp_path / "t.txt")
+
+def test_sheared_line_gives_w_from_both_starts(tmp_path):
+    """The deck's w counts from the start of compression, the figures' from the start of shear:
+    the console says both, labelled (be13c81 said 'w -1.427 mm' where the figures say -0.147)."""
+    from tbagsrun.stages import shear_w
+    (tmp_path / "shear.csv").write_text("time_s,u_mm,w_mm,S_N\n# means\n0.1,0.0,-1.2800,10\n0.2,0.01,-1.2810,12\n")
+    line = "SHEARED: u 5.000 mm, S 572.519 N, F_v 317.958 N, w -1.427 mm from the start of compression, broken bonds 0"
+    assert shear_w(line, tmp_path) == line.replace(
+        "compression,", "compression, -0.147 mm from the start of shear,")
+    assert shear_w("COMPRESSED: F_v 1 N", tmp_path) == "COMPRESSED: F_v 1 N"

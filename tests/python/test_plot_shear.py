@@ -70,3 +70,19 @@ def test_truncated_and_missing(tmp_path):
         plot_shear.plot([tmp_path / "x"], tmp_path / "f.png")
     with pytest.raises(SystemExit, match="no run directory"):
         plot_shear.plot([tmp_path / "nowhere"], tmp_path / "f.png")
+
+
+def test_runs_of_one_load_are_labelled_by_what_differs(tmp_path):
+    """Two speeds at one F_v (the quasistatic preset): be13c81 labelled both 'F_v = 0.32 kN'."""
+    found = []
+    for name, slow in (("v0.01", 1), ("v0.005", 2)):
+        d = tmp_path / name
+        d.mkdir()
+        rows = csv(1960).splitlines()
+        text = rows[:2] + [",".join([str(float(r.split(",")[0]) * slow)] + r.split(",")[1:]) for r in rows[2:]]
+        (d / "shear.csv").write_text("\n".join(text) + "\n")
+        found.append(Run(d))
+    assert shear.labels(found) == ["$F_v$ = 1.96 kN, $v$ = 20 mm/s", "$F_v$ = 1.96 kN, $v$ = 10 mm/s"]
+    fig, _ = shear.figure(found)
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert "min-max within each output interval" not in legend    # no band columns here
