@@ -30,7 +30,9 @@ def last_row(lines):
 
 
 def duration(seconds):
-    return "%.1f h" % (seconds / 3600) if seconds >= 3600 else "%.0f min" % (seconds / 60)
+    if seconds >= 3600:
+        return "%.1f h" % (seconds / 3600)
+    return "%.0f min" % (seconds / 60) if seconds >= 120 else "%.0f s" % seconds
 
 
 def percent(row):

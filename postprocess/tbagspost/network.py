@@ -4,7 +4,8 @@ bag's tension pushes on the sand).
 
 (a) contacts whose midpoint lies in the band around the bag's mid-plane in y, as lines between
     the particle centres (projected on x-z), width and colour by the normal force: sand-sand in
-    blues, bag-sand in reds (bag-bag contacts, inside the fabric, are left out);
+    blues, bag-sand in reds, bag-bag (the fabric's particles touching each other) in green, width
+    by force on the same scale, and the share of the section's normal force each kind carries;
 (b) the bonds of the bag's central row (both ends within s/2 of the mid-plane in y), width and
     colour by tension (slack bonds thin grey);
 (c) mean normal force against x in the section (bins of s = 5 mm), sand-sand and bag-sand.
@@ -84,8 +85,7 @@ def figure(run, step, half_band=None):
     caxes = [fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[0, 3]), fig.add_subplot(grid[1, 1])]
     xlo, xhi = g.pos[g.bag, 0].min(), g.pos[g.bag, 0].max()
     zmax = z_top if z_top is not None else float((g.pos[:, 2] + g.radius).max())
-    shown = in_sec & (kind != "bag-bag")
-    fmax = max(float(fn[shown].max()) if shown.any() else 0.0, 1e-12)
+    fmax = max(float(fn[in_sec].max()) if in_sec.any() else 0.0, 1e-12)
     norm = colors.Normalize(0, fmax)
     bars = []
     for name, cmap in (("sand-sand", "Blues"), ("bag-sand", "Reds")):
@@ -93,6 +93,15 @@ def figure(run, step, half_band=None):
         cmap = colors.LinearSegmentedColormap.from_list(name, matplotlib.colormaps[cmap](np.linspace(0.3, 1, 64)))
         _lines(a_net, seg[sel], np.clip(fn[sel], 0, None), norm, cmap)
         bars.append((cm.ScalarMappable(norm=norm, cmap=cmap), "%s $f_n$ (N)" % name))
+    wall = in_sec & (kind == "bag-bag")
+    lw = 0.3 + (LW_MAX - 0.3) * np.clip(fn[wall] / fmax, 0, 1)
+    a_net.add_collection(LineCollection(seg[wall][:, :, [0, 2]] * 1000, linewidths=lw, colors="tab:green",
+                                        capstyle="round"))
+    total = max(float(np.clip(fn[in_sec], 0, None).sum()), 1e-12)
+    shares = ", ".join("%s %.0f %%" % (name, 100 * np.clip(fn[in_sec & (kind == name)], 0, None).sum() / total)
+                       for name in KINDS)
+    a_net.text(0.01, 0.02, "share of the section's normal force: %s (bag-bag in green)" % shares,
+               transform=a_net.transAxes, fontsize=6.5, va="bottom")
     sec_bag = section.in_xz(g, half) & g.bag
     a_net.plot(g.pos[sec_bag, 0] * 1000, g.pos[sec_bag, 2] * 1000, "o", color="0.6", ms=1.2, zorder=0)
     a_net.set_title("contact forces, central x-z section $\\pm$%.1f mm ($u$ = %.2f mm)" % (half * 1000, u))

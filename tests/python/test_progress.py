@@ -27,10 +27,10 @@ CYCLIC = """   Step          Time          v_pct          v_uc           v_w    
 def test_status_of_each_deck():
     assert progress.status(COMPRESSION.splitlines()) == "compressing: F_v 1802 N at step 334000"
     assert progress.status((COMPRESSION + SHEAR).splitlines()) == \
-        "98 % of the shear (u 4.91 mm), about 0 min left"
+        "98 % of the shear (u 4.91 mm), about 5 s left"
     assert progress.status(CYCLIC.splitlines()) == "12 % of the cycles, about 1.6 h left"
     assert progress.status(["LAMMPS (4 Feb 2025)", "Loop time"]) is None
-    assert progress.duration(4583.8) == "1.3 h" and progress.duration(280) == "5 min"
+    assert progress.duration(4583.8) == "1.3 h" and progress.duration(280) == "5 min" and progress.duration(95) == "95 s"
 
 
 def test_watch_says_changes_while_the_block_runs(tmp_path):
@@ -44,7 +44,7 @@ def test_watch_says_changes_while_the_block_runs(tmp_path):
     n = len(said)
     time.sleep(0.2)
     assert said == ["  shear in F5500: compressing: F_v 1802 N at step 334000",
-                    "  shear in F5500: 98 % of the shear (u 4.91 mm), about 0 min left"]
+                    "  shear in F5500: 98 % of the shear (u 4.91 mm), about 5 s left"]
     assert len(said) == n and threading.active_count() == 1    # stopped with the block
     with progress.Watch(screen, "x", 0, said.append) as w:    # 0: none
         assert w.thread is None
