@@ -85,6 +85,7 @@ def figure(run, step, half_band=None):
     caxes = [fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[0, 3]), fig.add_subplot(grid[1, 1])]
     xlo, xhi = g.pos[g.bag, 0].min(), g.pos[g.bag, 0].max()
     zmax = z_top if z_top is not None else float((g.pos[:, 2] + g.radius).max())
+    shown = in_sec & (kind != "bag-bag")    # (the stats count the sand's contacts)
     fmax = max(float(fn[in_sec].max()) if in_sec.any() else 0.0, 1e-12)
     norm = colors.Normalize(0, fmax)
     bars = []
@@ -100,11 +101,10 @@ def figure(run, step, half_band=None):
     total = max(float(np.clip(fn[in_sec], 0, None).sum()), 1e-12)
     shares = ", ".join("%s %.0f %%" % (name, 100 * np.clip(fn[in_sec & (kind == name)], 0, None).sum() / total)
                        for name in KINDS)
-    a_net.text(0.01, 0.02, "share of the section's normal force: %s (bag-bag in green)" % shares,
-               transform=a_net.transAxes, fontsize=6.5, va="bottom")
     sec_bag = section.in_xz(g, half) & g.bag
     a_net.plot(g.pos[sec_bag, 0] * 1000, g.pos[sec_bag, 2] * 1000, "o", color="0.6", ms=1.2, zorder=0)
-    a_net.set_title("contact forces, central x-z section $\\pm$%.1f mm ($u$ = %.2f mm)" % (half * 1000, u))
+    a_net.set_title("contact forces, central x-z section $\\pm$%.1f mm ($u$ = %.2f mm)\nshare of the "
+                    "section's normal force: %s (bag-bag in green)" % (half * 1000, u, shares), fontsize=8)
 
     tension = b["tension"]
     bnorm = colors.Normalize(0, max(float(tension[b_sec].max()) if b_sec.any() else 0.0, 1e-12))

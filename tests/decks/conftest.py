@@ -10,5 +10,6 @@ import lmprun  # noqa: E402
 
 @pytest.fixture(scope="module")
 def tiny_filled(tmp_path_factory):
-    """A folder with the tiny bag (lmprun.TINY_BAG) made and filled: bag.data, fill.data, logs."""
-    return lmprun.bag_and_fill(tmp_path_factory.mktemp("tinybag"))
+    """A folder with the tiny bag (lmprun.TINY_BAG) made and filled: bag.data, fill.data, logs
+    (a copy of the suite's shared fill when ctest made one: fixture "tiny")."""
+    return lmprun.filled_bag(tmp_path_factory.mktemp("tinybag"))

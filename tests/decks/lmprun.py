@@ -28,7 +28,55 @@ def bag_and_fill(workdir, size=TINY_BAG):
     """inputs/in.bag and in.fill in workdir: a filled bag for the shear, cyclic and stack tests."""
     for deck in ("in.bag", "in.fill"):
         run(INPUTS / deck, workdir, variables=size).check()
+    Path(workdir, ".size").write_text(repr(sorted(size.items())))
     return Path(workdir)
+
+
+# the suite's shared products (ctest fixtures, tests/decks/make_fixture.py): made once per ctest
+# run into TBAGS_FIXTURES/<name>, copied by the tests that need them; made here when absent (a
+# test run by hand)
+FIXTURES = os.environ.get("TBAGS_FIXTURES", "")
+
+
+def shared(name):
+    """The folder of the suite's fixture `name` if ctest made it, else None."""
+    folder = Path(FIXTURES) / name if FIXTURES else None
+    return folder if folder and (folder / ".done").is_file() else None
+
+
+def filled_bag(workdir, size=TINY_BAG):
+    """A filled bag in workdir: the suite's shared fill of this size copied (fixture "tiny"), or
+    bag_and_fill() when there is none."""
+    import shutil
+    src = shared("tiny")
+    if src and (src / ".size").read_text() == repr(sorted(size.items())):
+        Path(workdir).mkdir(parents=True, exist_ok=True)
+        for f in src.iterdir():
+            if f.is_file() and f.name != ".done":
+                shutil.copy2(f, Path(workdir) / f.name)
+        return Path(workdir)
+    return bag_and_fill(workdir, size)
+
+
+DEMO_SHEAR = {"nx": 21, "ny": 21, "nz": 7, "v": 0.015, "ufinal": 0.005, "dt": 1.5e-6, "damping": "explicit"}
+
+
+def demo_run(workdir):
+    """The main job's bag, fill (seed 4821) and shear (the demo preset's protocol, 1 rank) in
+    workdir, with LAMMPS's output; returns (workdir, the shear's screen output)."""
+    size = {k: DEMO_SHEAR[k] for k in ("nx", "ny", "nz")}
+    bag_and_fill(workdir, size)
+    res = run(INPUTS / "in.shear", workdir, variables=DEMO_SHEAR, timeout=3600).check()
+    Path(workdir, "shear.output.txt").write_text(res.output)
+    return Path(workdir), res.output
+
+
+def demo(workdir):
+    """demo_run()'s folder: the suite's shared one (fixture "demo"), else made in workdir."""
+    src = shared("demo")
+    if src:
+        return src, (src / "shear.output.txt").read_text()
+    return demo_run(workdir)
 
 
 def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, timeout=1200,

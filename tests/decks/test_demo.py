@@ -1,6 +1,7 @@
 """The main job as a regression test: the demo bag (21 x 21 x 7) of `./tbags shear` built,
 filled (seed 4821) and sheared with the preset's protocol (5.5 kN's stress, F_v 318.14 N, 15 mm/s
-to 5 mm) on 1 rank. The figures it reports, measured as tbagspost.realizations measures them,
+to 5 mm) on 1 rank (the suite makes it once, ctest fixture "demo", for this test and
+test_liggghts_demo.py). The figures it reports, measured as tbagspost.realizations measures them,
 must fall inside the spread of the committed realizations (inputs/results/demo-realizations.csv,
 six fills: S at 5 mm 551 +- 17 N, contraction 0.156 +- 0.008 mm): within 3 standard
 deviations of their mean, at least the half-range of the fills plus 5 % of the mean; F_v
@@ -34,10 +35,8 @@ def band(values):
 
 
 def test_demo_bag_within_the_realizations(tmp_path):
-    lmprun.bag_and_fill(tmp_path, DEMO)
-    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(DEMO, v=0.015, ufinal=0.005),
-                     timeout=3600).check()
-    d = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True, comments="#")
+    wd, output = lmprun.demo(tmp_path)    # the suite's shared run (fixture "demo"), or made here
+    d = np.genfromtxt(wd / "shear.csv", delimiter=",", names=True, comments="#")
     got = realizations.metrics(d)
     ref = committed_spread()
     for key in ("S_5mm_N", "contraction_mm", "S_peak_N"):
@@ -45,4 +44,4 @@ def test_demo_bag_within_the_realizations(tmp_path):
         print("%s: %.4g (realizations %s; band %.4g .. %.4g)" % (key, got[key], ref[key], lo, hi))
         assert lo <= got[key] <= hi, key
     assert got["Fv_N"] == pytest.approx(318.14, rel=0.005)
-    assert "broken bonds 0" in res.output.split("SHEARED:")[1].splitlines()[0]
+    assert "broken bonds 0" in output.split("SHEARED:")[1].splitlines()[0]

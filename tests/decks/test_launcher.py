@@ -12,6 +12,11 @@ TINY = ["-np", "1", "-var", "nx", "9", "-var", "ny", "9", "-var", "nz", "5", "-v
         "-var", "ufinal", "0.0003"]
 
 
+# S at u = 0.79 mm of the tiny bag in this protocol over fills of seeds 4821-4824 (measured with
+# ./tbags shear and the test's -var values: 65.4, 59.0, 60.7, 62.8 N)
+TINY_SD_S = 2.78    # N (mean 62.0 N)
+
+
 def launcher_env(**extra):
     return dict(os.environ, TBAGS_BUILD_DIR=os.environ.get("TBAGS_BUILD", str(lmprun.ROOT / "build")), **extra)
 
@@ -132,3 +137,19 @@ def test_resume_an_interrupted_run(tmp_path):
     # called again: the finished run is kept, not run
     r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900)
     assert r.returncode == 0 and "shear in %s: finished before, kept" % out in r.stdout
+    # what a resume gives (README): the rows up to the checkpoint are the straight run's, bit for
+    # bit; after it the run parts as another sample of the fill would, within the spread of S
+    # between fills (TINY_SD_S)
+    straight = tmp_path / "straight"
+    r = subprocess.run([w if w != str(out) else str(straight) for w in argv], env=launcher_env(),
+                       capture_output=True, text=True, timeout=900)
+    assert r.returncode == 0
+    resumed_rows = [line for line in (out / "shear.csv").read_text().splitlines() if line[:1].isdigit()]
+    straight_rows = [line for line in (straight / "shear.csv").read_text().splitlines() if line[:1].isdigit()]
+    assert len(resumed_rows) == len(straight_rows) == 41
+    same = next(k for k, (a, b) in enumerate(zip(resumed_rows, straight_rows)) if a != b)
+    ref = np.genfromtxt(straight / "shear.csv", delimiter=",", names=True)
+    print("resumed: rows identical to the straight run's up to u = %.2f mm; S at the end %.2f N "
+          "against %.2f N (fills' sd %.1f N)" % (ref["u_mm"][same - 1], rows["S_N"][-1], ref["S_N"][-1], TINY_SD_S))
+    assert ref["u_mm"][same - 1] >= 0.19    # the first checkpoint is at 0.2 mm
+    assert abs(rows["S_N"][-1] - ref["S_N"][-1]) < 2 * TINY_SD_S

@@ -78,13 +78,15 @@ def test_short_run_agrees_to_round_off_across_migrations(short):
 
 def test_long_run_agrees_statistically(tmp_path, data):
     """40,000 steps: the trajectories part (chaos, 1 mm by the end); the mean shear stress
-    p_xy over the last 20,000 steps of 2 and 4 ranks is within 5 % of the 1-rank value
-    (measured: -670, -665, -682 kPa; newton off -663, -678)."""
-    runs = {r: run(tmp_path / str(r), data, r, "on", 40000) for r in (1, 2, 4)}
+    p_xy over the last 20,000 steps of 2 ranks is within 5 % of the 1-rank value (measured:
+    -670, -665 kPa; 4 ranks -682, newton off -663, -678). 4 ranks are checked over the short
+    run, to round-off across their migrations; here they ran oversubscribed on 2 cores at a
+    quarter of the speed (more than half of the suite's longest test), for no other check."""
+    runs = {r: run(tmp_path / str(r), data, r, "on", 40000) for r in (1, 2)}
     ref = runs[1]["pxy"]
     for r, res in runs.items():
         print("ranks %d: mean p_xy %.0f Pa, %d neighbor builds, %d atoms changed ranks"
               % (r, res["pxy"], res["builds"], res["migrated"]))
         assert res["builds"] > 1000
         assert res["pxy"] == pytest.approx(ref, rel=0.05)
-    assert runs[4]["migrated"] > 150
+    assert runs[2]["migrated"] > 100

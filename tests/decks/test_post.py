@@ -122,7 +122,7 @@ def test_network_figure_draws_the_contact_forces(run):
         assert np.allclose(np.array(coll.get_segments()), seg[sel][:, :, [0, 2]] * 1000)
     wall = in_sec & (kind == "bag-bag")    # drawn too (be13c81 left out what carries most of F_v)
     assert wall.sum() > 0 and np.allclose(np.array(a_net.collections[2].get_segments()), seg[wall][:, :, [0, 2]] * 1000)
-    assert "share of the section's normal force: sand-sand" in a_net.texts[-1].get_text()
+    assert "share of the section's normal force: sand-sand" in a_net.get_title()
     assert st["n_section"] == (in_sec & (kind != "bag-bag")).sum()
     assert st["tension_max_N"] == pytest.approx(b["tension"].max())
     edge = network.edge_mask(g, seg.mean(axis=1))
