@@ -51,7 +51,8 @@ PRESETS = {p.name: p for p in (
            (Run("", "shear", dict(v=0.015, ufinal=0.005)),), False, "figures",
            help="the main job: 21 x 21 x 7 bag (105 x 105 x 35 mm), the paper's 5.5 kN mean stress "
                 "(F_v scaled by plan area), sheared at 15 mm/s to u = 5 mm (inertial number 8e-4 < "
-                "1e-3); 2-3 minutes on 2 cores (6 with the first LAMMPS build). -> runs/shear-demo/"),
+                "1e-3); 2-3 minutes on 2 cores (about 9 on a bare machine: packages and the first "
+                "LAMMPS build). -> runs/shear-demo/"),
     Preset("trends", "trends", TRENDS_BAG, per_load("shear", v=0.01, ufinal=0.005), True, "figures",
            check="trends",
            help="28 x 28 x 7 bag, the paper's plan-to-height ratio (inner 130 x 130 x 25 mm, 5.2; the "
