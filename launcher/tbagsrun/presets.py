@@ -49,8 +49,8 @@ def per_load(deck, **variables):
 PRESETS = {p.name: p for p in (
     Preset("demo", "shear-demo", DEMO_BAG,
            (Run("", "shear", dict(v=0.015, ufinal=0.005)),), False, "figures",
-           help="the main job: 21 x 21 x 7 bag (105 x 105 x 35 mm), the paper's 5.5 kN mean stress "
-                "(F_v scaled by plan area), sheared at 15 mm/s to u = 5 mm (inertial number 8e-4 < "
+           help="the main job: 21 x 21 x 7 bag (105 x 105 x 35 mm), the vertical stress of the "
+                "paper's 5.5 kN load (F_v scaled by the inner plan area: 318 N), sheared at 15 mm/s to u = 5 mm (inertial number 8e-4 < "
                 "1e-3); 2-3 minutes on 2 cores (about 9 on a bare machine: packages and the first "
                 "LAMMPS build). -> runs/shear-demo/"),
     Preset("trends", "trends", TRENDS_BAG, per_load("shear", v=0.01, ufinal=0.005), True, "figures",
