@@ -44,7 +44,7 @@ lmp="$build/lmp"
 exec 9>"$build.lock"
 flock 9
 if [ ! -x "$lmp" ] || [ ! -f "$build/.tbags-complete" ]; then
-  echo "build-lammps: building LAMMPS $version with $packages into $build (about 5 min on 2 cores) ..." >&2
+  echo "build-lammps: building LAMMPS $version with $packages into $build (about 7 min on 2 cores) ..." >&2
   export CCACHE_DIR=${CCACHE_DIR:-$cache/ccache}
   export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
   log="$build.log"

@@ -62,11 +62,7 @@ def check(out, groups, resume, overwrite):
     if out.exists() and not out.is_dir():
         raise LaunchError("shear: --out %s is a file, not a folder; choose another --out" % out)
     if overwrite:
-        try:
-            fresh_dir(out)
-        except OSError as e:
-            raise LaunchError("shear: cannot write the outputs to %s: %s; choose another --out"
-                              % (out, e.strerror or e))
+        make(out, empty=True)
         return
     found = [c for stages, origin in groups for c in conflicts(stages, resume, origin)]
     if found:
@@ -84,12 +80,17 @@ def check(out, groups, resume, overwrite):
     make(out)
 
 
-def make(out):
-    """The output folder and its marker; one line naming the path and the reason if it cannot be
-    made (a path under /proc, a read-only disk, a file in the way)."""
+def make(out, empty=False):
+    """The output folder and its marker (empty: emptied first, stages.fresh_dir); one line naming
+    the path and the reason if it cannot be made (a path under /proc, a read-only disk, a file in
+    the way)."""
+    out = Path(out)
     try:
-        out.mkdir(parents=True, exist_ok=True)
-        (out / MARKER).touch()
+        if empty:
+            fresh_dir(out)
+        else:
+            out.mkdir(parents=True, exist_ok=True)
+            (out / MARKER).touch()
     except OSError as e:
         raise LaunchError("shear: cannot write the outputs to %s: %s; choose another --out"
                           % (out, e.strerror or e))

@@ -91,21 +91,30 @@ def plan(preset, out, user, engine="lammps"):
     return stages
 
 
+def realization(preset, out, user, engine="lammps"):
+    """(plan's stages, the fill's stamp) of one realization: what guard.check compares."""
+    return plan(preset, out, user, engine), vars_key(dict(preset.bag, **user))
+
+
+def check_realization(out, stages, origin, resume, overwrite, estimate_only=False):
+    """guard.check of one realization (--estimate makes no runs: its bag, fill and compression
+    only)."""
+    guard.check(out, [([s for s in stages if s.product] if estimate_only else stages, origin)],
+                resume, overwrite)
+
+
 def decide(preset, out, user, nreal=1, seed=4821, engine="lammps", resume=False, overwrite=False,
            estimate_only=False):
     """What the call does to `out`, decided before anything runs (guard.check): refused if it
     would remove or rewrite an earlier call's files, `out` emptied first with overwrite."""
     out = Path(out)
     if nreal > 1:
-        groups = []
-        for k in range(1, nreal + 1):
-            mine = dict(user, seed=seed + k - 1)
-            groups.append((plan(preset, out / ("r%d" % k), mine, engine), vars_key(dict(preset.bag, **mine))))
+        groups = [realization(preset, out / ("r%d" % k), dict(user, seed=seed + k - 1), engine)
+                  for k in range(1, nreal + 1)]
+        guard.check(out, groups, resume, overwrite)
     else:
-        mine = dict(user, seed=seed) if "seed" not in user else user
-        stages = plan(preset, out, mine, engine)
-        groups = [(stages[:-len(preset.runs)] if estimate_only else stages, vars_key(dict(preset.bag, **mine)))]
-    guard.check(out, groups, resume, overwrite)
+        check_realization(out, *realization(preset, out, dict({"seed": seed}, **user), engine), resume,
+                          overwrite, estimate_only)    # (a seed among the user's values wins)
 
 
 def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False,
@@ -118,12 +127,11 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     t0 = time.time()
     out = Path(out)
     fill_vars = dict(preset.bag, **user)
-    stages = plan(preset, out, user, engine)
-    origin = vars_key(fill_vars)    # the fill's stamp (a run resumes on the same fill)
+    stages, origin = realization(preset, out, user, engine)    # origin: a run resumes on the same fill
     if not (decided or in_realizations):
-        decide(preset, out, user, engine=engine, resume=resume, overwrite=overwrite, estimate_only=estimate_only)
+        check_realization(out, stages, origin, resume, overwrite, estimate_only)
     guard.make(out)
-    bag, fill, *part, runs = stages[0], stages[1], *stages[2:-len(preset.runs)], stages[-len(preset.runs):]
+    (bag, fill, *part), runs = [s for s in stages if s.product], [s for s in stages if not s.product]
     part_stage = part and (part[0].folder, part[0].deck, ranks, part[0].variables, say, part[0].product)
     if preset.estimate:
         estimate_paper(out, fill_vars, ranks, say, part_stage, resume and not estimate_only)

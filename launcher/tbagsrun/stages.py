@@ -69,11 +69,12 @@ def shear_w(line, folder):
     csv = Path(folder) / "shear.csv"
     if not (line.startswith("SHEARED") and m and csv.is_file()):
         return line
-    rows = [r for r in csv.read_text().splitlines() if r[:1].isdigit()]
-    head = next((r for r in csv.read_text().splitlines() if r.startswith("time_s")), "")
-    if not rows or "w_mm" not in head.split(","):
+    lines = csv.read_text().splitlines()
+    rows = [r for r in lines if r[:1].isdigit()]
+    head = next((r for r in lines if r.startswith("time_s")), "").split(",")
+    if not rows or "w_mm" not in head:
         return line
-    w0 = float(rows[0].split(",")[head.split(",").index("w_mm")])
+    w0 = float(rows[0].split(",")[head.index("w_mm")])
     return line.replace(m.group(0), "%s, %.3f mm from the start of shear" % (m.group(0), float(m.group(1)) - w0))
 
 

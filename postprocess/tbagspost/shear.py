@@ -59,14 +59,13 @@ def figure(runs, title=None):
     a_w.axhline(0, color="0.5", lw=0.6)
     for ax, tag in ((a_s, "(a)"), (a_w, "(b)")):
         ax.set_xlim(left=0)
+        handles, texts = ax.get_legend_handles_labels()
         if band:    # say what the shading is
             from matplotlib.patches import Patch
-            handles, texts = ax.get_legend_handles_labels()
-            ax.legend(handles + [Patch(color="0.5", alpha=0.3, lw=0)],
-                      texts + ["min-max within each output interval"],
-                      loc="lower right" if ax is a_s else "best", frameon=False, fontsize="small")
-        else:
-            ax.legend(loc="lower right" if ax is a_s else "best", frameon=False)
+            handles.append(Patch(color="0.5", alpha=0.3, lw=0))
+            texts.append("min-max within each output interval")
+        ax.legend(handles, texts, loc="lower right" if ax is a_s else "best", frameon=False,
+                  fontsize="small" if band else None)
         style.panel_label(ax, tag)
     a_s.set_ylim(bottom=min(0.0, a_s.get_ylim()[0]))
     if title:

@@ -14,6 +14,7 @@ import numpy as np
 ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(ROOT / "launcher"))
 from tbagsrun import lammps  # noqa: E402
+from tbagsrun.presets import DEMO_BAG, PRESETS  # noqa: E402
 
 LMP = os.environ.get("TBAGS_LMP", "")
 PLUGIN = Path(os.environ.get("LAMMPS_PLUGIN_PATH", "")) / "tbagsplugin.so"
@@ -28,8 +29,13 @@ def bag_and_fill(workdir, size=TINY_BAG):
     """inputs/in.bag and in.fill in workdir: a filled bag for the shear, cyclic and stack tests."""
     for deck in ("in.bag", "in.fill"):
         run(INPUTS / deck, workdir, variables=size).check()
-    Path(workdir, ".size").write_text(repr(sorted(size.items())))
+    Path(workdir, ".size").write_text(size_key(size))
     return Path(workdir)
+
+
+def size_key(size):
+    """A bag's size as bag_and_fill stamps it (.size), for filled_bag to match."""
+    return repr(sorted(size.items()))
 
 
 # the suite's shared products (ctest fixtures, tests/decks/make_fixture.py): made once per ctest
@@ -49,7 +55,7 @@ def filled_bag(workdir, size=TINY_BAG):
     bag_and_fill() when there is none."""
     import shutil
     src = shared("tiny")
-    if src and (src / ".size").read_text() == repr(sorted(size.items())):
+    if src and (src / ".size").read_text() == size_key(size):
         Path(workdir).mkdir(parents=True, exist_ok=True)
         for f in src.iterdir():
             if f.is_file() and f.name != ".done":
@@ -58,14 +64,14 @@ def filled_bag(workdir, size=TINY_BAG):
     return bag_and_fill(workdir, size)
 
 
-DEMO_SHEAR = {"nx": 21, "ny": 21, "nz": 7, "v": 0.015, "ufinal": 0.005, "dt": 1.5e-6, "damping": "explicit"}
+# the demo preset's bag and shear, with the decks' step and plate damping said explicitly
+DEMO_SHEAR = dict(DEMO_BAG, **PRESETS["demo"].runs[0].variables, dt=1.5e-6, damping="explicit")
 
 
 def demo_run(workdir):
     """The main job's bag, fill (seed 4821) and shear (the demo preset's protocol, 1 rank) in
     workdir, with LAMMPS's output; returns (workdir, the shear's screen output)."""
-    size = {k: DEMO_SHEAR[k] for k in ("nx", "ny", "nz")}
-    bag_and_fill(workdir, size)
+    bag_and_fill(workdir, DEMO_BAG)
     res = run(INPUTS / "in.shear", workdir, variables=DEMO_SHEAR, timeout=3600).check()
     Path(workdir, "shear.output.txt").write_text(res.output)
     return Path(workdir), res.output

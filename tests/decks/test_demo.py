@@ -19,7 +19,6 @@ sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
 from tbagspost import realizations  # noqa: E402
 
 INPUTS = lmprun.INPUTS
-DEMO = {"nx": 21, "ny": 21, "nz": 7}
 
 
 def committed_spread():
