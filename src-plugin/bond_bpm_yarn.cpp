@@ -163,7 +163,8 @@ void BondBPMYarn::create_history_store()
 }
 
 /* ----------------------------------------------------------------------
-   first call: store the length of every bond (r0) and zero its history
+   first call: store every bond's rest length (the type's r0 if given, else its length now) and
+   zero its history
 ------------------------------------------------------------------------- */
 
 void BondBPMYarn::store_data()
@@ -176,7 +177,9 @@ void BondBPMYarn::store_data()
       if (j == -1) error->one(FLERR, "{}: bonded atom {} is missing", STYLE, atom->bond_atom[i][m]);
       double d[3] = {x[j][0] - x[i][0], x[j][1] - x[i][1], x[j][2] - x[i][2]};
       domain->minimum_image(d[0], d[1], d[2]);
-      fix_bond_history->update_atom_value(i, m, yarn::R0, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      const double r0 = coeffs[atom->bond_type[i][m]].r0;
+      fix_bond_history->update_atom_value(i, m, yarn::R0,
+                                          r0 > 0.0 ? r0 : sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
       for (int k = 1; k < yarn::NHISTORY; k++) fix_bond_history->update_atom_value(i, m, k, 0.0);
     }
   }
@@ -358,8 +361,9 @@ void BondBPMYarn::write_data(FILE *fp)
   for (int i = 1; i <= atom->nbondtypes; i++) {
     const YarnCoeff &c = coeffs[i];
     utils::print(fp, "{} table {} {} diameter {:.17g} poisson {:.17g} E {:.17g} shear {:.17g} "
-                 "break {:.17g} damping {:.17g} {:.17g} {:.17g} unload {}\n", i, c.file, c.keyword,
+                 "break {:.17g} damping {:.17g} {:.17g} {:.17g} unload {}{}\n", i, c.file, c.keyword,
                  c.p.d, c.p.nu, c.p.E, c.p.kappa, c.p.eps_break, c.p.gn, c.p.gs, c.p.gr,
-                 c.p.plastic ? "plastic" : "elastic");
+                 c.p.plastic ? "plastic" : "elastic",
+                 c.r0 > 0.0 ? fmt::format(" r0 {:.17g}", c.r0) : std::string());
   }
 }

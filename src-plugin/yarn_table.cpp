@@ -124,7 +124,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
                                  YarnCoeff &c, double *r0)
 {
   const bool axial_only = r0 != nullptr;
-  if (r0) *r0 = -1.0;
+  c.r0 = -1.0;
   if (narg < 4 || strcmp(arg[1], "table") != 0)
     fail(lmp, style, std::string("write 'bond_coeff T table FILE KEYWORD diameter D") +
                          (axial_only ? " r0 R0'" : " poisson NU'"));
@@ -154,9 +154,10 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
       need(1);
       brk = num(1);
       iarg += 2;
-    } else if (axial_only && kw == "r0") {
+    } else if (kw == "r0") {
       need(1);
-      *r0 = num(1);
+      c.r0 = num(1);
+      if (!(c.r0 > 0.0)) fail(lmp, style, "r0 must be > 0 (m), the bonds' rest length, got " + str(c.r0));
       iarg += 2;
     } else if (axial_only && kw == "damping") {
       need(1);
@@ -197,6 +198,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
   }
   if (c.p.d <= 0.0)
     fail(lmp, style, "bond_coeff needs 'diameter D' with D > 0 (m)");
+  if (axial_only) *r0 = c.r0;
   if (axial_only && *r0 <= 0.0)
     fail(lmp, style, "bond_coeff needs 'r0 R0' with R0 > 0 (m), the unstretched length");
   const double last = c.curve->eps.back();
@@ -228,9 +230,9 @@ void LAMMPS_NS::write_yarn_coeff(FILE *fp, const YarnCoeff &c)
   fwrite(&n, sizeof(int), 1, fp);
   fwrite(c.curve->eps.data(), sizeof(double), n, fp);
   fwrite(c.curve->val.data(), sizeof(double), n, fp);
-  double v[10] = {c.p.d, c.p.E, c.p.nu, c.p.kappa, c.p.eps_break, c.p.gn, c.p.gs, c.p.gr,
-                  c.p.plastic ? 1.0 : 0.0, c.p.force_table ? 1.0 : 0.0};
-  fwrite(v, sizeof(double), 10, fp);
+  double v[11] = {c.p.d, c.p.E, c.p.nu, c.p.kappa, c.p.eps_break, c.p.gn, c.p.gs, c.p.gr,
+                  c.p.plastic ? 1.0 : 0.0, c.p.force_table ? 1.0 : 0.0, c.r0};
+  fwrite(v, sizeof(double), 11, fp);
   fwrite(&lf, sizeof(int), 1, fp);
   fwrite(c.file.c_str(), 1, lf, fp);
   fwrite(&lk, sizeof(int), 1, fp);
@@ -250,15 +252,15 @@ void LAMMPS_NS::read_yarn_coeff(LAMMPS *lmp, FILE *fp, YarnCoeff &c)
   MPI_Bcast(&n, 1, MPI_INT, 0, world);
   c.curve->eps.resize(n);
   c.curve->val.resize(n);
-  double v[10];
+  double v[11];
   if (me == 0) {
     fread_all(lmp, c.curve->eps.data(), sizeof(double), n, fp);
     fread_all(lmp, c.curve->val.data(), sizeof(double), n, fp);
-    fread_all(lmp, v, sizeof(double), 10, fp);
+    fread_all(lmp, v, sizeof(double), 11, fp);
   }
   MPI_Bcast(c.curve->eps.data(), n, MPI_DOUBLE, 0, world);
   MPI_Bcast(c.curve->val.data(), n, MPI_DOUBLE, 0, world);
-  MPI_Bcast(v, 10, MPI_DOUBLE, 0, world);
+  MPI_Bcast(v, 11, MPI_DOUBLE, 0, world);
   c.p.d = v[0];
   c.p.E = v[1];
   c.p.nu = v[2];
@@ -269,6 +271,7 @@ void LAMMPS_NS::read_yarn_coeff(LAMMPS *lmp, FILE *fp, YarnCoeff &c)
   c.p.gr = v[7];
   c.p.plastic = v[8] != 0.0;
   c.p.force_table = v[9] != 0.0;
+  c.r0 = v[10];
   for (std::string *s : {&c.file, &c.keyword}) {
     int len = 0;
     if (me == 0) fread_all(lmp, &len, sizeof(int), 1, fp);

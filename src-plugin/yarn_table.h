@@ -18,14 +18,15 @@ struct YarnCoeff {
   // types), so that p.curve stays valid when the set is copied or its vector grows
   std::shared_ptr<tbags::yarn::Curve> curve = std::make_shared<tbags::yarn::Curve>();
   tbags::yarn::Params p;    // p.curve points at *curve
+  double r0 = -1.0;    // rest length of every bond of the type (m); <= 0: its length when first seen
   bool set = false;
 
   YarnCoeff() { p.curve = curve.get(); }
 };
 
 // Parse 'bond_coeff T table FILE KEYWORD diameter D poisson NU [E E] [shear KAPPA]
-// [break EPS] [damping GN GS GR] [unload elastic|plastic]' from arg[1..]; 'style' names the
-// bond style in messages. With r0 given (bond_style yarn): the axial law only, 'r0 R0'
+// [break EPS] [damping GN GS GR] [unload elastic|plastic] [r0 R0]' from arg[1..]; 'style' names
+// the bond style in messages. With r0 given (bond_style yarn): the axial law only, 'r0 R0'
 // required, 'damping GN' (axial) and no bending, shear, twisting or plastic keywords.
 void parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg, YarnCoeff &c,
                       double *r0 = nullptr);

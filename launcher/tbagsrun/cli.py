@@ -139,6 +139,10 @@ def parse(argv):
     if engine == "liggghts" and (preset.estimate or any(r.deck != "shear" for r in preset.runs)):
         raise LaunchError("shear: --engine liggghts runs the shear test only (presets demo, trends, "
                           "quasistatic); LIGGGHTS has no decks for %s yet" % preset.name)
+    if engine == "liggghts" and variables.get("fabric", "solid") == "woven":
+        raise LaunchError("shear: --engine liggghts offers the fabrics solid and words; woven needs "
+                          "bonded bag particles that do not touch (LAMMPS's overlay/pair no): run it "
+                          "in LAMMPS")
     if resume and overwrite:
         raise LaunchError("shear: --resume keeps an earlier call's runs, --overwrite removes them: give one")
     if resume and (engine != "lammps" or estimate):
@@ -193,11 +197,22 @@ def shear(argv):
                    engine=o.engine, resume=o.resume, decided=True)
 
 
+def fabric_study(argv):
+    from . import fabric
+    if argv and argv[0] in ("--help", "-h", "help"):
+        print(fabric.USAGE)
+        return
+    o = fabric.parse(argv)
+    variables.check(PRESETS["demo"], o.variables)
+    set_up()
+    fabric.run(o, lambda line: print(line, flush=True))
+
+
 def main(argv):
-    if not argv or argv[0] != "shear":
-        sys.exit("usage: python3 -m tbagsrun shear [PRESET] [options] (./tbags shear --help)")
+    if not argv or argv[0] not in ("shear", "fabric"):
+        sys.exit("usage: python3 -m tbagsrun shear|fabric [options] (./tbags shear --help)")
     try:
-        shear(argv[1:])
+        (shear if argv[0] == "shear" else fabric_study)(argv[1:])
     except LaunchError as e:
         sys.exit("tbags: %s" % e)
     except subprocess.CalledProcessError:

@@ -14,7 +14,7 @@ from pathlib import Path
 from . import ROOT, LaunchError, lammps, progress, resume as resumed
 
 # the lines of a stage's screen output that the launcher repeats (the decks' summaries)
-SUMMARY = re.compile(r"^(BAG|FILL|TIMESTEP|INERTIAL|COMPRESSION PART|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
+SUMMARY = re.compile(r"^(BAG|FILL|FABRIC|PRESSED|TIMESTEP|INERTIAL|COMPRESSION PART|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
 MARKER = ".tbags-run"    # in every output folder the launcher made (so --out never clears a user's)
 PROGRESS_DEFAULT = 30    # s between a stage's progress lines at least (--progress; 0: none; progress.py)
 PROGRESS_EVERY = PROGRESS_DEFAULT

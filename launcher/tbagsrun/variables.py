@@ -43,7 +43,8 @@ RANGES = {
     "Fv": (or_minus_one(positive), "positive (N), or -1 for Fpaper scaled by the plan area"),
     "film_mu": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (none given)"),
     "film_mu_below": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (film_mu)"),
-    "yarn_shear": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (bpm/yarn's circular-section value)"),
+    "yarn_shear": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (the fabric's value)"),
+    "yarn_bendE": (or_minus_one(positive), "positive (Pa), or -1 (the fabric's value)"),
     "per_size": (or_minus_one(whole(1)), "a whole number, 1 or more, or -1 (from e0)"),
     "compress_to": (lambda x: 0 <= x < 1, "from 0 (none) to below 1 (a fraction of F_v)"),
     "film_nu": (lambda x: 0 <= x < 0.5, "from 0 to below 0.5"),
@@ -51,7 +52,8 @@ RANGES = {
     "steps": (whole(0), "a whole number of steps, 0 or more"),
     **{n: (lambda x: x in (0, 1), "0 or 1") for n in ("trace", "state", "plan_only")},
 }
-CHOICES = {"damping": ("explicit", "implicit"), "wave": ("sine", "triangle"), "sand": ("paper", "calibrated")}
+CHOICES = {"damping": ("explicit", "implicit"), "wave": ("sine", "triangle"), "sand": ("paper", "calibrated"),
+           "fabric": ("solid", "words", "woven")}
 
 
 def deck_texts(decks):

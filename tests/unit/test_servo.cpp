@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 using tbags::servo::Chatter;
 using tbags::servo::Controller;
@@ -71,4 +72,22 @@ TEST(Servo, ChatterMeterWaitsForAFullWindow)
   m.reset();
   EXPECT_EQ(m.count, 0);
   EXPECT_EQ(m.amplitude, 0.0);
+}
+
+// A force with noise of no fixed phase (contacts making and breaking, grains landing on the bag)
+// is not chatter: before the coherent mean, white noise of amplitude s read as 0.6 s, so a
+// packing's first contacts warned "reduce the timestep" at any step.
+TEST(Servo, ChatterMeterIgnoresNoiseWithoutAPhase)
+{
+  Chatter m;
+  std::mt19937 gen(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int n = 0; n < 20000; n++) {
+    const double kick = u(gen) < 0.01 ? 10.0 : 0.0;    // an impact every 100 steps or so
+    const double f[3] = {noise(gen), 0.5 * noise(gen), 100.0 + noise(gen) + kick};
+    m.add(f);
+  }
+  EXPECT_LT(m.amplitude, 0.1);    // the noise's sd is 1 N (the old meter: about 1 N)
+  EXPECT_FALSE(m.chattering(0.005));
 }

@@ -1,0 +1,81 @@
+"""./tbags fabric: what each fabric carries alone. Per fabric, the bag of inputs/in.bag filled
+(in.fill) and nearly empty (in.fill -var per_size 1: ten grains), each pressed between the plates
+at a constant speed (inputs/in.press: the filled bag up to twice the load, the empty one to half
+its height); then postprocess/tbagspost/fabric.py: the empty bag's force at the gap where the
+filled bag carries the load, as a share of the load, the curves and the walls.
+"""
+import argparse
+from pathlib import Path
+
+from . import ROOT, LaunchError, guard
+from .stages import run_python, stage
+from .variables import CHOICES
+
+FABRICS = CHOICES["fabric"]
+USAGE = """usage: ./tbags fabric [--size NX NY NZ] [--fabrics solid,words,woven] [-np N] [--out DIR]
+                     [--overwrite] [-var name value ...]
+Presses each fabric's bag filled and empty (ten grains) between the plates and reports the share
+of the load the empty bag carries at the filled bag's gap under the load (the vertical stress of
+the paper's 5.5 kN: F_v = 5500 N (nx-2)(ny-2)/79^2). Default: the demo bag 21 x 21 x 7, the three
+fabrics, 2 ranks, -> runs/fabric/ (about 10 min on 2 cores). -var values go to every deck (e.g.
+-var sand calibrated)."""
+
+
+def parse(argv):
+    ap = argparse.ArgumentParser(prog="./tbags fabric", usage=USAGE, add_help=False)
+    ap.add_argument("--size", nargs=3, type=int, default=(21, 21, 7))
+    ap.add_argument("--fabrics", default=",".join(FABRICS))
+    ap.add_argument("-np", dest="ranks", type=int, default=2)
+    ap.add_argument("--out", type=Path, default=ROOT / "runs" / "fabric")
+    ap.add_argument("--overwrite", action="store_true")
+    ap.add_argument("-var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"))
+    try:
+        o = ap.parse_args(argv)
+    except SystemExit:
+        raise LaunchError("fabric: bad arguments (above)\n" + USAGE)
+    o.fabrics = o.fabrics.split(",")
+    bad = [f for f in o.fabrics if f not in FABRICS]
+    if bad:
+        raise LaunchError("fabric: --fabrics %s: each must be %s" % (",".join(bad), " or ".join(FABRICS)))
+    if min(o.size) < 3 or o.ranks < 1:
+        raise LaunchError("fabric: --size needs 3 or more particles a side, -np 1 or more")
+    o.variables = dict(o.var)
+    if "fabric" in o.variables:
+        raise LaunchError("fabric: name the fabrics with --fabrics, not -var fabric")
+    return o
+
+
+def load(nx, ny):
+    """F_v (N) at the vertical stress of the paper's 5.5 kN on its 79 x 79 inner plan."""
+    return 5500.0 * (nx - 2) * (ny - 2) / 79 ** 2
+
+
+def run(o, say):
+    out = Path(o.out)
+    if out.is_dir() and any(out.iterdir()) and not o.overwrite:
+        raise LaunchError("fabric: %s holds an earlier call's runs; give --overwrite to start again "
+                          "(it removes its contents) or another --out. Nothing was changed." % out)
+    guard.make(out, empty=o.overwrite)
+    nx, ny, nz = o.size
+    size = dict(nx=nx, ny=ny, nz=nz)
+    Fv = load(nx, ny)
+    stage(out, "bag", o.ranks, dict(size, **o.variables), say)
+    folders = {}
+    for fabric in o.fabrics:
+        both = {}
+        for kind, fill_vars, press_vars in (("filled", {}, dict(Fstop=2 * Fv)), ("empty", dict(per_size=1), {})):
+            folder = out / fabric / kind
+            folder.mkdir(parents=True, exist_ok=True)
+            common = dict(size, fabric=fabric, **o.variables)
+            stage(folder, "fill", o.ranks, dict(common, bag="../../bag.data", **fill_vars), say)
+            stage(folder, "press", o.ranks, dict(common, **press_vars), say)
+            both[kind] = folder
+        folders[fabric] = (both["empty"], both["filled"])
+    args = ["-m", "tbagspost.fabric", out, "--Fv", Fv] + [
+        x for f in o.fabrics for x in ("--pair", f, folders[f][0], folders[f][1])]
+    with open(out / "fabric-alone.txt", "w") as fh:
+        ok, err = run_python(args, stdout=fh)
+    if not ok:
+        raise LaunchError("%s\nfabric: the report failed" % err.strip())
+    for line in (out / "fabric-alone.txt").read_text().splitlines():
+        say(line)
