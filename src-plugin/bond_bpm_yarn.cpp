@@ -57,9 +57,9 @@ BondBPMYarn::BondBPMYarn(LAMMPS *lmp) : BondBPM(lmp)
   nhistory = yarn::NHISTORY;
   update_flag = 1;    // the history (shear force, moments, largest strain) changes every step
   id_fix_bond_history = utils::strdup("HISTORY_BPM_YARN");
-  // svector for compute bond/local b1..b5: strain, axial force, |shear force|, |bending
-  // moment|, twisting moment
-  single_extra = 5;
+  // svector for compute bond/local b1..b8: strain, axial force, |shear force|, |bending
+  // moment|, twisting moment, the bond's whole force on its atom of lower ID (x, y, z)
+  single_extra = 8;
   svector = new double[single_extra];
 }
 
@@ -315,7 +315,8 @@ bool BondBPMYarn::bond_history(int i, int j, double *hist)
 
 /* ----------------------------------------------------------------------
    single(): energy of the axial spring, fforce along the bond (tension < 0 as LAMMPS bonds:
-   F = fforce * del with del = x_i - x_j); svector: strain, axial force, |F_s|, |M_b|, M_t
+   F = fforce * del with del = x_i - x_j); svector: strain, axial force, |F_s|, |M_b|, M_t, and
+   the whole force (axial, shear, damping) on the atom of lower ID
 ------------------------------------------------------------------------- */
 
 double BondBPMYarn::single(int type, double rsq, int i, int j, double &fforce)
@@ -335,6 +336,7 @@ double BondBPMYarn::single(int type, double rsq, int i, int j, double &fforce)
   svector[2] = tbags::vec::len(hist + yarn::FS);
   svector[3] = tbags::vec::len(hist + yarn::MB);
   svector[4] = hist[yarn::MT];
+  for (int k = 0; k < 3; k++) svector[5 + k] = o.f[k];
   return yarn::axial_energy(coeffs[type].p, o.eps, hist[yarn::R0]);
 }
 

@@ -11,7 +11,10 @@ Modules, one job each:
   shape     deformed shape of the bag (side view and two central cross-sections)
   network   contact-force network and bond tension in the central cross-section
   triax     triaxial runs (calibration/in.triax): stress ratio and volumetric strain
-  loadpath  what carries the load: forces the contacts pass across the bag's mid-height
+  loadpath  what carries the load: forces the contacts and bonds pass across the bag's mid-height
+            (summary line, loadpath.csv at every dump)
+  bounds    the S/F_v the sand alone can give, from its triaxial friction angle
+  fabric    what the fabric carries alone (./tbags fabric)
   realizations  several realizations of one test: mean curves, spread of the reported figures
   hysteresis  loop measures (K_eq, W_d, h_eq), Ramberg-Osgood and Masing, the fit
   cyclic    cyclic runs (inputs/in.cyclic): cycles, table, R-O fit per load, figures, report

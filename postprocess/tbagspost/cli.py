@@ -118,8 +118,14 @@ def process(run, args, several):
             written += style.save(fig, out / ("%s_u%.1fmm" % (name, st["u_mm"])), args.format, args.dpi)
             lines.append("%s: %s" % (name, module.describe(st)))
             if name == "network":
-                r = loadpath.through_plane(run.grains(step), run.contacts(step))
-                lines.append("u %.1f mm: %s" % (st["u_mm"], loadpath.describe(r, run.at_step(step, "S_N"))))
+                b = run.bonds(step) if run.dump("bonds", step).exists() else None
+                r = loadpath.through_plane(run.grains(step), run.contacts(step), b=b)
+                lines.append("u %.1f mm: %s" % (st["u_mm"], loadpath.describe(
+                    r, run.at_step(step, "S_N"), run.at_step(step, "Fv_N"))))
+    if "network" in args.only and run.steps("contacts"):
+        out.mkdir(parents=True, exist_ok=True)
+        loadpath.write_csv(loadpath.table(run), out / "loadpath.csv")
+        written.append(out / "loadpath.csv")
     if args.vtk:
         written += vtkout.convert(run, out / "paraview" if args.outdir else None)
     if lines:

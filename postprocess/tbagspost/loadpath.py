@@ -1,19 +1,22 @@
-"""What carries the load: the forces that the contacts pass across a horizontal plane at the bag's
-mid-height, split into sand-sand, bag-sand and bag-bag contacts.
+"""What carries the load: the forces passed across a horizontal plane at the bag's mid-height,
+split into sand-sand, bag-sand and bag-bag contacts and the yarn bonds.
 
 The plane lies halfway between the two middle layers of the bag's grid (filled-state heights are
 multiples of the 5 mm spacing), at their current mean height, so that no wall particle sits on
-it. A contact crosses it when its two particles lie on either side. The vertical force through the
-plane is the top plate's F_v (plus the weight above), all of it through contacts, since the yarn
-bonds only pull. The horizontal force the contacts pass is compared with the top plate's S: the
-rest crosses through the yarn bonds (axial tension, and the shear spring of bond_style bpm/yarn).
-A sandbag whose sand is loaded shows most of F_v in sand contacts.
+it. A contact or bond crosses it when its two particles lie on either side. What crosses it is,
+on the part below, the top plate's F_v (plus the weight above) downward and its S along x (less
+the inertia of the part above, small in a quasi-static run): the contacts push, the bonds pull
+(axially, and through the shear spring of the solid fabric). The bonds' forces come from the
+bond dump's fbx fby fbz (the bond's whole force on its atom of lower id; inputs/in.shear since the
+fabric study); without them the bonds are left out and their share is the remainder. A sandbag
+whose sand is loaded shows most of F_v in sand contacts.
 """
 from collections import OrderedDict
 
 import numpy as np
 
 SPACING = 0.005    # m, the bag grid
+CLASSES = ("sand-sand", "bag-sand", "bag-bag", "bonds")
 
 
 def mid_plane(g):
@@ -26,10 +29,16 @@ def mid_plane(g):
     return 0.5 * (z[layer == below].mean() + z[layer == below + 1].mean())
 
 
-def through_plane(g, c, z=None):
-    """Forces passed across the plane z (default mid_plane) by the contacts c: OrderedDict with
-    z, the total vertical (compressive, N) and horizontal x force (N, on the part below) and, per
-    class sand-sand / bag-sand / bag-bag, those two and the number of contacts."""
+def _sums(f_low, cross):
+    """(compressive vertical, x) force (N) on the part below, of the crossing rows of f_low."""
+    return float(-f_low[cross, 2].sum()), float(f_low[cross, 0].sum())
+
+
+def through_plane(g, c, z=None, b=None):
+    """Forces passed across the plane z (default mid_plane) by the contacts c and the bonds b (a
+    bond dump with fbx fby fbz, or None): OrderedDict with z, the total vertical (compressive, N)
+    and horizontal x force (N, on the part below) and, per class sand-sand / bag-sand / bag-bag /
+    bonds, those two and the number crossing; 'bonds' is None without b."""
     z = mid_plane(g) if z is None else z
     i1, i2 = g.index(c["id1"]), g.index(c["id2"])
     p1, p2 = g.pos[i1], g.pos[i2]
@@ -41,17 +50,62 @@ def through_plane(g, c, z=None):
     t1, t2 = c["type1"], c["type2"]
     classes = OrderedDict([("sand-sand", (t1 == 2) & (t2 == 2)), ("bag-sand", t1 != t2),
                            ("bag-bag", (t1 == 1) & (t2 == 1))])
-    out = OrderedDict(z=float(z), Fz=float(-f_low[cross, 2].sum()), Fx=float(f_low[cross, 0].sum()))
+    out = OrderedDict(z=float(z))
     for name, m in classes.items():
-        k = cross & m
-        out[name] = (float(-f_low[k, 2].sum()), float(f_low[k, 0].sum()), int(k.sum()))
+        out[name] = _sums(f_low, cross & m) + (int((cross & m).sum()),)
+    out["bonds"] = None
+    if b is not None and "fbx" in b:
+        lo_id, hi_id = np.minimum(b["id1"], b["id2"]), np.maximum(b["id1"], b["id2"])
+        pl, ph = g.pos[g.index(lo_id)], g.pos[g.index(hi_id)]
+        bcross = (pl[:, 2] - z) * (ph[:, 2] - z) < 0
+        f_lo = np.column_stack([b["fbx"], b["fby"], b["fbz"]])    # on the atom of lower id
+        f_low = np.where((pl[:, 2] > ph[:, 2])[:, None], -f_lo, f_lo)
+        out["bonds"] = _sums(f_low, bcross) + (int(bcross.sum()),)
+    parts = [out[k] for k in CLASSES if out[k] is not None]
+    out["Fz"] = sum(p[0] for p in parts)
+    out["Fx"] = sum(p[1] for p in parts)
     return out
 
 
-def describe(r, S=None):
-    """One line: the share of the vertical force per contact class, and the contacts' share of S."""
-    share = ", ".join("%s %.0f %%" % (k, 100 * r[k][0] / r["Fz"]) for k in ("sand-sand", "bag-sand", "bag-bag"))
-    line = "load path at mid-height (z = %.1f mm): vertical %.0f N through contacts: %s" % (r["z"] * 1e3, r["Fz"], share)
-    if S is not None:
-        line += "; horizontal %.0f N through contacts of S = %.0f N (the rest through the yarn bonds)" % (r["Fx"], S)
+def describe(r, S=None, Fv=None):
+    """One line: the share of F_v and of S per class (of the plate's F_v and S when given)."""
+    Fz = Fv or r["Fz"]
+    have = [k for k in CLASSES if r[k] is not None]
+    share = ", ".join("%s %.0f %%" % (k, 100 * r[k][0] / Fz) for k in have)
+    line = ("load path at mid-height (z = %.1f mm): vertical %.0f N across it%s: %s"
+            % (r["z"] * 1e3, r["Fz"], " (F_v %.0f N)" % Fv if Fv else "", share))
+    if S:
+        line += "; horizontal %.0f N of S = %.0f N: %s" % (r["Fx"], S, ", ".join(
+            "%s %.0f %%" % (k, 100 * r[k][1] / S) for k in have))
+        if r["bonds"] is None:
+            line += " (the rest through the yarn bonds)"
     return line
+
+
+def table(run):
+    """The load path at every dump step of a shear run: rows of u (mm), the plate's F_v and S (N),
+    the vertical and horizontal totals across the plane and each class's (N)."""
+    rows = []
+    for step in run.steps("contacts"):
+        g = run.grains(step)
+        c = run.contacts(step)
+        bond_dump = run.dump("bonds", step)
+        b = run.bonds(step) if bond_dump.exists() else None
+        r = through_plane(g, c, b=b)
+        row = OrderedDict(u_mm=run.at_step(step), Fv_N=run.at_step(step, "Fv_N"), S_N=run.at_step(step, "S_N"),
+                          Fz_N=r["Fz"], Fx_N=r["Fx"])
+        for k in CLASSES:
+            v = r[k] if r[k] is not None else (float("nan"), float("nan"), 0)
+            key = k.replace("-", "_")
+            row["Fz_%s_N" % key], row["Fx_%s_N" % key] = v[0], v[1]
+        rows.append(row)
+    return rows
+
+
+def write_csv(rows, path):
+    """rows of table() as a CSV (one header line, %.4f)."""
+    if not rows:
+        return
+    lines = [",".join(rows[0])] + [",".join("%.4f" % v for v in r.values()) for r in rows]
+    path.write_text("# the load path across the bag's mid-height at each dump (tbagspost.loadpath): "
+                    "compressive vertical Fz and x force Fx on the part below, N\n" + "\n".join(lines) + "\n")

@@ -122,6 +122,16 @@ class Run:
         return "$F_v$ = %.2f kN" % self.fv_kN
 
     @property
+    def model(self):
+        """The run's sand and fabric names, from its log's SAND: and FABRIC: lines (paper and
+        solid when a log has none: runs made before the names)."""
+        text = "".join(p.read_text(errors="replace") for p in
+                       sorted(self.path.glob("log.*")) + sorted(self.path.glob("screen.*")))
+        sand = re.search(r"^SAND: (\w+) parameters", text, re.M)
+        fabric = re.search(r"^FABRIC: (\w+):", text, re.M)
+        return dict(sand=sand.group(1) if sand else "paper", fabric=fabric.group(1) if fabric else "solid")
+
+    @property
     def dt(self):
         """Time step (s): --dt, else the TIMESTEP line of the run's log."""
         if self._dt is None:

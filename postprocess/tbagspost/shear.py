@@ -5,7 +5,7 @@ down; > 0: dilatancy). The curves are the CSV's means over each output interval;
 has the interval's min and max (S_min_N, S_max_N, w_min_mm, w_max_mm), a light band shows them."""
 import numpy as np
 
-from tbagspost import style
+from tbagspost import bounds, style
 
 
 def speed_mm_s(run):
@@ -49,7 +49,7 @@ def figure(runs, title=None):
                              color=line.get_color(), alpha=0.15, lw=0)
         k = int(np.argmax(s))
         drops = np.diff(s)
-        stats.append(dict(run=run.name, Fv_kN=run.fv_kN, S_peak_kN=float(s[k]), u_peak_mm=float(u[k]),
+        stats.append(dict(run=run.name, **run.model, Fv_kN=run.fv_kN, S_peak_kN=float(s[k]), u_peak_mm=float(u[k]),
                           u_final_mm=float(u[-1]), S_final_kN=float(s[-1]), w_min_mm=float(w.min()),
                           w_final_mm=float(w[-1]), largest_drop_kN=float(max(0.0, -drops.min()))))
     a_s.set_xlabel("horizontal displacement $u$ (mm)")
@@ -76,7 +76,10 @@ def figure(runs, title=None):
 
 def describe(st):
     """One line of numbers for a run's S-u and w-u."""
-    return ("%s: F_v %.2f kN; peak S %.3f kN at u %.2f mm, S %.3f kN at u %.2f mm; w min %.3f mm, "
+    line = ("%s: F_v %.2f kN; peak S %.3f kN at u %.2f mm, S %.3f kN at u %.2f mm; w min %.3f mm, "
             "final %.3f mm (from the start of shear); largest drop of S %.3f kN"
             % (st["run"], st["Fv_kN"], st["S_peak_kN"], st["u_peak_mm"], st["S_final_kN"],
                st["u_final_mm"], st["w_min_mm"], st["w_final_mm"], st["largest_drop_kN"]))
+    if "fabric" in st and st["Fv_kN"] > 0:
+        line += "; fabric %s, peak %s" % (st["fabric"], bounds.describe(st["S_peak_kN"] / st["Fv_kN"], st["sand"]))
+    return line

@@ -227,3 +227,32 @@ def test_overloaded_bag_tears(filled, tmp_path):
     assert broken > 0 and len(dumps) == 3
     assert rows["broken_bonds"][-1] == broken
     assert all(512 - n == broken for n in listed)
+
+
+def test_load_path_sums_to_the_plate_forces(filled, tmp_path):
+    """What crosses the bag's mid-height (tbagspost.loadpath: contacts of each class and the yarn
+    bonds' whole forces, from the dumps) is, at each dump step, the top plate's F_v plus the weight
+    above the plane (within 1 %) and its S (within 2 % at a step, 1 % averaged over the shear's
+    dumps, sheared at 5 mm/s: the part above has some inertia at a single step); the plate's forces at exactly that
+    step come from the trace. The same sums without the bonds miss S by most of it (solid fabric)."""
+    import sys
+    sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
+    from tbagspost import loadpath, run as tbrun
+    lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, fill=filled / "fill.data", v=0.005, ufinal=0.0003,
+                                                             du_dump=0.00005, du_csv=0.00005, trace=1)).check()
+    steps = np.genfromtxt(tmp_path / "shear.steps.csv", delimiter=",", names=True)
+    r = tbrun.Run(tmp_path)
+    ratios = []
+    for step in r.steps("contacts")[1:]:    # (the first dump: the plate starting to move)
+        g = r.grains(step)
+        x = loadpath.through_plane(g, r.contacts(step), b=r.bonds(step))
+        k = int(np.nonzero(steps["step"] == step)[0][0])
+        mass = np.where(g.types == 1, 450.0, 2650.0) * 4 / 3 * np.pi * g.radius ** 3
+        weight = 9.81 * mass[g.pos[:, 2] > x["z"]].sum()
+        vz, hx = x["Fz"] / (steps["Fv_N"][k] + weight), x["Fx"] / steps["S_N"][k]
+        no_bonds = (x["Fx"] - x["bonds"][1]) / steps["S_N"][k]
+        print("step %d: vertical %.4f of F_v + W, horizontal %.4f of S (%.3f without the bonds)"
+              % (step, vz, hx, no_bonds))
+        assert abs(vz - 1) < 0.01 and abs(hx - 1) < 0.02
+        ratios.append(hx)
+    assert len(ratios) >= 3 and abs(np.mean(ratios) - 1) < 0.01
