@@ -184,17 +184,36 @@ def shear(argv):
     out = o.out or ROOT / "runs" / (o.preset.folder + ("-liggghts" if o.engine == "liggghts" else ""))
     stages.PROGRESS_EVERY = o.progress_every
     variables.check(o.preset, o.variables)    # every value, before anything is made
-    decide(o.preset, out, o.variables, o.nreal, o.seed, o.engine, o.resume, o.overwrite, o.estimate)
+    fabrics = () if "fabric" in o.variables else o.preset.fabrics
+    for where, user in ([(out / f, dict(o.variables, fabric=f)) for f in fabrics] or [(out, o.variables)]):
+        decide(o.preset, where, user, o.nreal, o.seed, o.engine, o.resume, o.overwrite, o.estimate)
     set_up(o.engine == "liggghts")
 
     def say(line):
         print(line, flush=True)
-    if o.nreal > 1:
+    if fabrics:    # a design preset: once per fabric, then compared
+        for f in fabrics:
+            say("tbags shear %s: fabric %s -> %s" % (o.preset.name, f, out / f))
+            run_preset(o.preset, o.ranks, out / f, dict(o.variables, seed=o.seed, fabric=f), say,
+                       resume=o.resume, decided=True)
+        compare_fabrics(out, fabrics, say)
+    elif o.nreal > 1:
         run_realizations(o.preset, o.nreal, o.seed, o.ranks, out, o.variables, say, o.engine, o.resume,
                          decided=True)
     else:
         run_preset(o.preset, o.ranks, out, dict(o.variables, seed=o.seed), say, estimate_only=o.estimate,
                    engine=o.engine, resume=o.resume, decided=True)
+
+
+def compare_fabrics(out, fabrics, say):
+    """fabrics.md: the design preset's isolator properties per fabric and their ratio."""
+    ok, err = stages.run_python(["-m", "tbagspost.fabrics", out] +
+                                ["%s=%s" % (f, out / f / "figures") for f in fabrics[:2]],
+                                stdout=subprocess.DEVNULL)
+    if not ok:
+        raise LaunchError("%s\nshear: the fabrics' comparison failed" % err.strip())
+    for line in (out / "fabrics.md").read_text().splitlines():
+        say(line)
 
 
 def fabric_study(argv):

@@ -14,6 +14,11 @@ LOADS = (5500, 3730, 1960)    # the paper's three vertical loads (N on its 395 x
 # servo still runs at its speed limit, so the part is the same for all)
 COMPRESS_SHARED = 0.9
 DEMO_BAG = dict(nx=21, ny=21, nz=7)
+# the presets that reproduce the paper run the fabric that reproduces its findings best (the
+# evidence table in inputs/results/README.md); the design presets run both (DESIGN_FABRICS)
+PAPER_FABRIC = {"fabric": "fabric solid (the paper's solid-bond cage, which reproduces its findings best; "
+                          "-var fabric woven for a woven bag that carries no compression: ./tbags fabric)"}
+DESIGN_FABRICS = ("solid", "woven")
 # the paper's plan-to-height ratio: inner 130 x 130 x 25 mm (5.2) against 395 x 395 x 75 mm (5.27);
 # 5 mm of shear is the paper's 20 % average shear strain
 TRENDS_BAG = dict(nx=28, ny=28, nz=7)
@@ -39,6 +44,7 @@ class Preset:
     defaults_said: dict = field(default_factory=dict)    # variable -> line printed when it is the preset's
     realizations: bool = True        # --realizations offered (not for runs of hours or days)
     estimate: bool = False           # measures a short stretch first and projects the time
+    fabrics: tuple = ()              # run once per fabric (FABRIC/ subfolders) and compared, unless -var fabric
     help: str = ""
 
 
@@ -48,13 +54,13 @@ def per_load(deck, **variables):
 
 PRESETS = {p.name: p for p in (
     Preset("demo", "shear-demo", DEMO_BAG,
-           (Run("", "shear", dict(v=0.015, ufinal=0.005)),), False, "figures",
+           (Run("", "shear", dict(v=0.015, ufinal=0.005)),), False, "figures", defaults_said=PAPER_FABRIC,
            help="the main job: 21 x 21 x 7 bag (105 x 105 x 35 mm), the vertical stress of the "
                 "paper's 5.5 kN load (F_v scaled by the inner plan area: 318 N), sheared at 15 mm/s to u = 5 mm (inertial number 8e-4 < "
                 "1e-3); 2-3 minutes on 2 cores (about 9 on a bare machine: packages and the first "
                 "LAMMPS build). -> runs/shear-demo/"),
     Preset("trends", "trends", TRENDS_BAG, per_load("shear", v=0.01, ufinal=0.005), True, "figures",
-           check="trends",
+           check="trends", defaults_said=PAPER_FABRIC,
            help="28 x 28 x 7 bag, the paper's plan-to-height ratio (inner 130 x 130 x 25 mm, 5.2; the "
                 "paper's 395 x 395 x 75 mm, 5.27), at the three loads (5.50, 3.73, 1.96 kN scaled by "
                 "plan area; side by side), 10 mm/s to 5 mm, the paper's 20 % shear strain (inertial "
@@ -62,31 +68,34 @@ PRESETS = {p.name: p for p in (
                 "with --realizations N in every realization. -> runs/trends/"),
     Preset("quasistatic", "quasistatic", TRENDS_BAG,
            tuple(Run("v%g" % v, "shear", dict(Fpaper=1960, v=v, ufinal=0.005)) for v in (0.01, 0.005)),
-           True, "figures", check="speed",
+           True, "figures", check="speed", defaults_said=PAPER_FABRIC,
            help="the trends bag at 1.96 kN (its highest inertial number) at 10 and 5 mm/s to 5 mm: the "
                 "S-u curves must agree (the speed does not drive the result). -> runs/quasistatic/"),
     Preset("cyclic", "cyclic", DEMO_BAG, per_load("cyclic"), True, "cyclic", realizations=False,
+           fabrics=DESIGN_FABRICS,
            help="the demo bag at the three loads' stresses (side by side), cycled with F_v held: "
                 "amplitudes 0.25 0.5 1 2 3 5 mm, 3 sine cycles each, every amplitude at the same "
                 "15 mm/s peak plate speed (in.cyclic: -var amps \"0.25 1 5\" -var cycles N -var wave "
                 "triangle -var vpeak V or -var freq F); then the loops, K_eq/K_0 and h_eq curves, "
-                "Ramberg-Osgood fit and report.md (tbagspost/cyclic.py). Hours on 2 cores; each load "
-                "checkpoints after every amplitude (--resume continues there). -> runs/cyclic/"),
+                "Ramberg-Osgood fit and report.md (tbagspost/cyclic.py); with the fabrics solid and woven "
+                "(-var fabric F for one), compared in fabrics.md. Hours on 2 cores; each load "
+                "checkpoints after every amplitude (--resume continues there). -> runs/cyclic/{solid,woven}"),
     Preset("stack", "stack", DEMO_BAG,
            (Run("single", "cyclic", dict(Fpaper=3730)),
             Run("stack", "cyclic", dict(Fpaper=3730, bags=2, film_mu=0.1))), True, "stack",
            defaults_said={"film_mu": "film friction 0.1 (a geotextile on UHMWPE; -var film_mu MU for yours)"},
-           realizations=False,
+           realizations=False, fabrics=DESIGN_FABRICS,
            help="the T-BAGS system: two demo bags (one fill) stacked with a polymer film sheet between "
                 "them (fix wall/gran/servo film: 0.5 mm, free to move; its friction against the bags "
                 "-var film_mu, 0.1 unless given: a geotextile on UHMWPE, doc/fix_wall_gran_servo.rst; "
                 "-var film_mu_below 1e10 fixes it to the lower bag), at 3.73 kN's stress with the "
                 "cyclic protocol, and one bag of the same fill beside it; then the cyclic analysis of "
                 "both and the split of the plate's displacement into bag shear and film slip "
-                "(tbagspost/stack.py). Hours on 2 cores; checkpoints after every amplitude (--resume). "
-                "-> runs/stack/{stack,single,figures}"),
+                "(tbagspost/stack.py); with the fabrics solid and woven (-var fabric F for one), compared "
+                "in fabrics.md. Hours on 2 cores; checkpoints after every amplitude (--resume). "
+                "-> runs/stack/{solid,woven}/{stack,single,figures}"),
     Preset("paper", "paper", PAPER_BAG, per_load("shear", v=0.004, ufinal=0.015), False, "figures",
-           realizations=False, estimate=True,
+           realizations=False, estimate=True, defaults_said=PAPER_FABRIC,
            help="the full 81 x 81 x 17 bag (17,922 particles, 35,840 bonds, 97,130 grains) at the three "
                 "loads, 4 mm/s to u = 15 mm: days of CPU, run it with MPI on a cluster. It first "
                 "makes its bag and fill, compresses and shears them to a checkpoint, times a short "

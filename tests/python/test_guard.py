@@ -53,7 +53,9 @@ def test_a_plain_rerun_is_refused_and_touches_nothing(tmp_path, name):
     """be13c81 emptied the folder (fresh_dir) before stage_run's refusal: a cyclic folder with
     F5500/cyclic.restart.a3 was gone within 6 s."""
     out = tmp_path / "out"
-    earlier_call(out, PRESETS[name], TINY)
+    preset = PRESETS[name]
+    for f in preset.fabrics or [None]:    # a design preset: once per fabric, in out/FABRIC
+        earlier_call(out / f if f else out, preset, dict(TINY, fabric=f) if f else TINY)
     before = checksums(out)
     r = tbags(name, "--out", out, *[w for k, v in TINY.items() for w in ("-var", k, v)])
     assert r.returncode != 0 and "holds an earlier" in r.stderr and "Nothing was changed" in r.stderr, r.stderr
