@@ -1,8 +1,10 @@
 """./tbags fabric: what each fabric carries alone. Per fabric, the bag of inputs/in.bag filled
 (in.fill) and nearly empty (in.fill -var per_size 1: ten grains), each pressed between the plates
 at a constant speed (inputs/in.press: the filled bag up to twice the load, the empty one to half
-its height); then postprocess/tbagspost/fabric.py: the empty bag's force at the gap where the
-filled bag carries the load, as a share of the load, the curves and the walls.
+its height), and the filled one on until its first bond breaks (the soilbag's compressive
+strength); then postprocess/tbagspost/fabric.py: the empty bag's force at the gap where the
+filled bag carries the load, as a share of the load, the curves and the walls, and the failure
+load against Matsuoka and Liu's formula.
 """
 import argparse
 from pathlib import Path
@@ -13,12 +15,13 @@ from .variables import CHOICES
 
 FABRICS = CHOICES["fabric"]
 USAGE = """usage: ./tbags fabric [--size NX NY NZ] [--fabrics solid,words,woven] [-np N] [--out DIR]
-                     [--overwrite] [-var name value ...]
+                     [--overwrite] [--no-strength] [-var name value ...]
 Presses each fabric's bag filled and empty (ten grains) between the plates and reports the share
 of the load the empty bag carries at the filled bag's gap under the load (the vertical stress of
-the paper's 5.5 kN: F_v = 5500 N (nx-2)(ny-2)/79^2). Default: the demo bag 21 x 21 x 7, the three
-fabrics, 2 ranks, -> runs/fabric/ (about 10 min on 2 cores). -var values go to every deck (e.g.
--var sand calibrated)."""
+the paper's 5.5 kN: F_v = 5500 N (nx-2)(ny-2)/79^2); then presses the filled bag on until its
+first yarn bond breaks, against Matsuoka and Liu's soilbag strength (--no-strength: not). Default:
+the demo bag 21 x 21 x 7, the three fabrics, 2 ranks, -> runs/fabric/ (half an hour on 2 cores;
+--size 9 9 5: 4 min). -var values go to every deck (e.g. -var sand calibrated)."""
 
 
 def parse(argv):
@@ -28,6 +31,7 @@ def parse(argv):
     ap.add_argument("-np", dest="ranks", type=int, default=2)
     ap.add_argument("--out", type=Path, default=ROOT / "runs" / "fabric")
     ap.add_argument("--overwrite", action="store_true")
+    ap.add_argument("--no-strength", dest="strength", action="store_false")
     ap.add_argument("-var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"))
     try:
         o = ap.parse_args(argv)
@@ -71,8 +75,16 @@ def run(o, say):
             stage(folder, "press", o.ranks, dict(common, **press_vars), say)
             both[kind] = folder
         folders[fabric] = (both["empty"], both["filled"])
-    args = ["-m", "tbagspost.fabric", out, "--Fv", Fv] + [
+        if o.strength:    # the filled bag pressed on until its first bond breaks
+            folder = out / fabric / "strength"
+            folder.mkdir(parents=True, exist_ok=True)
+            stage(folder, "press", o.ranks, dict(size, fabric=fabric, fill="../filled/fill.data", until_break=1,
+                                                 gap_final=0.3, **o.variables), say)
+    args = ["-m", "tbagspost.fabric", out, "--Fv", Fv, "--size", nx, ny, nz,
+            "--sand", o.variables.get("sand", "paper")] + [
         x for f in o.fabrics for x in ("--pair", f, folders[f][0], folders[f][1])]
+    if o.strength:
+        args += [x for f in o.fabrics for x in ("--strength", f, out / f / "strength")]
     with open(out / "fabric-alone.txt", "w") as fh:
         ok, err = run_python(args, stdout=fh)
     if not ok:

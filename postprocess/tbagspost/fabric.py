@@ -7,6 +7,7 @@ share of the load the fabric could carry without sand. A woven bag should carry 
 walls fold. Figure: the curves (force against gap over the bag's height) and side views of each
 empty bag at the dump nearest g_f and at its last dump (half the height).
 """
+import math
 from pathlib import Path
 
 import numpy as np
@@ -56,6 +57,50 @@ def alone(empty_csv, filled_csv, Fv):
     fe = force_at(ge, Fe, g)
     return dict(fabric=meta.get("fabric", "?"), H_mm=float(meta["H_mm"]), Fv=Fv, gap_filled_mm=g,
                 F_empty=fe, share=fe / Fv, gap_end_mm=float(ge[-1]), F_empty_end=float(Fe[-1]))
+
+
+YARN_TABLE = Path(__file__).resolve().parents[2] / "inputs" / "yarn_pp_tape.table"
+BOND_D = 1e-3       # m, the yarn bond's diameter (inputs/yarn.lmp)
+SPACING = 0.005     # m, the bag's grid
+
+
+def yarn_strength(table=YARN_TABLE):
+    """The bond's breaking force (N): A times the table's last stress (its break strain)."""
+    rows = [line.split() for line in Path(table).read_text().splitlines()
+            if len(line.split()) == 3 and line.split()[0].isdigit()]
+    return math.pi * BOND_D ** 2 / 4 * float(rows[-1][2])
+
+
+def matsuoka_liu(T, B, H, Kp, sigma3=0.0):
+    """A soilbag's compressive strength (Pa), Matsuoka and Liu (2003): sigma_1f = K_p sigma_3 +
+    (2 T / B)(K_p B / H - 1), T the bag's tensile strength per unit width (N/m), B its width and
+    H its height (m), K_p = (1 + sin phi)/(1 - sin phi) of the fill."""
+    return Kp * sigma3 + 2 * T / B * (Kp * B / H - 1)
+
+
+def strength(press_csv):
+    """(the largest row mean of F_v up to the row where the first bond broke (N), that row's gap
+    in mm); None if no bond broke."""
+    lines = [line for line in Path(press_csv).read_text().splitlines() if line and not line.startswith("#")]
+    names = lines[0].split(",")
+    rows = [dict(zip(names, map(float, line.split(",")))) for line in lines[1:]]
+    k = next((i for i, r in enumerate(rows) if r.get("broken_bonds", 0) > 0), None)
+    if k is None:
+        return None
+    return max(r["Fv_N"] for r in rows[:k + 1]), rows[k]["gap_mm"]
+
+
+def strength_check(press_csv, nx, ny, nz, Kp):
+    """The measured failure load against Matsuoka and Liu's, for the inner box of an nx x ny x nz
+    bag (B the mean plan side, H the height, between the particles' centre planes less one
+    spacing, as in.fill's nominal volume) and T = the bond's strength per bond spacing."""
+    got = strength(press_csv)
+    B = math.sqrt((nx - 2) * (ny - 2)) * SPACING
+    H = (nz - 2) * SPACING
+    T = yarn_strength() / SPACING
+    F = matsuoka_liu(T, B, H, Kp) * B * B
+    return dict(F_fail=got[0] if got else None, gap_fail_mm=got[1] if got else None, F_ml=F, T=T,
+                B_mm=B * 1e3, H_mm=H * 1e3, Kp=Kp, ratio=(got[0] / F) if got else None)
 
 
 def describe(r):
@@ -121,6 +166,10 @@ def main(argv=None):
     ap.add_argument("out", type=Path)
     ap.add_argument("--Fv", type=float, required=True)
     ap.add_argument("--pair", nargs=3, action="append", required=True, metavar=("FABRIC", "EMPTY", "FILLED"))
+    ap.add_argument("--strength", nargs=2, action="append", default=[], metavar=("FABRIC", "DIR"),
+                    help="a filled bag pressed until a bond broke (in.press -var until_break 1)")
+    ap.add_argument("--size", nargs=3, type=int, help="the bag's nx ny nz (for --strength)")
+    ap.add_argument("--sand", default="paper", help="the fill's sand set (K_p from its triaxial peak ratio)")
     a = ap.parse_args(argv)
     results, folders = [], {}
     for fabric, empty, filled in a.pair:
@@ -130,7 +179,23 @@ def main(argv=None):
         folders[fabric] = (empty, filled)
         print(describe(r))
     keys = ("fabric", "H_mm", "Fv", "gap_filled_mm", "F_empty", "share", "gap_end_mm", "F_empty_end")
-    lines = [",".join(keys)] + [",".join(str(r[k]) if k == "fabric" else "%.6g" % r[k] for k in keys) for r in results]
+    if a.strength:
+        from tbagspost import bounds
+        Kp = bounds.peak_ratio(a.sand)
+        for fabric_name, folder in a.strength:
+            c = strength_check(Path(folder) / "press.csv", *a.size, Kp)
+            r = next(x for x in results if x["fabric"] == fabric_name)
+            r.update(strength_F=c["F_fail"], strength_ml=c["F_ml"], strength_ratio=c["ratio"])
+            if c["F_fail"] is None:
+                print("fabric %s: soilbag strength: no bond broke (press further: gap_final)" % fabric_name)
+                continue
+            print("fabric %s: soilbag strength: the first bond broke at F_v %.0f N (gap %.2f mm); Matsuoka and "
+                  "Liu: %.0f N (T %.1f kN/m, B %.0f mm, H %.0f mm, K_p %.2f of the %s sand, sigma_3 0): ratio %.2f"
+                  % (fabric_name, c["F_fail"], c["gap_fail_mm"], c["F_ml"], c["T"] / 1e3, c["B_mm"], c["H_mm"],
+                     Kp, a.sand, c["ratio"]))
+    keys = keys + tuple(k for k in ("strength_F", "strength_ml", "strength_ratio") if any(k in r for r in results))
+    lines = [",".join(keys)] + [",".join(str(r[k]) if k == "fabric" else "%.6g" % (r.get(k) if r.get(k) is not None else float("nan"))
+                                         for k in keys) for r in results]
     (a.out / "fabric-alone.csv").write_text("\n".join(lines) + "\n")
     written = style.save(figure(results, folders), a.out / "fabric-alone")
     print("wrote %s and %s" % (a.out / "fabric-alone.csv", written[0]))
