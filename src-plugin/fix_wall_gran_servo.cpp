@@ -259,7 +259,12 @@ void FixWallGranServo::post_force(int)
   if (update_hist) {
     if (ncontact > 0.0) chatter.add(fplate);
     else chatter.reset();
-    const double reference = mode[axis] == SERVO ? std::fabs(target) : 0.0;
+    // judged against the servo's target, or for a film the force through it (its net force is
+    // the small difference of its two faces' forces)
+    double reference = mode[axis] == SERVO ? std::fabs(target) : 0.0;
+    if (film())
+      for (auto &ff : fface)
+        reference = std::fmax(reference, std::sqrt(ff[0] * ff[0] + ff[1] * ff[1] + ff[2] * ff[2]));
     if (chatter.chattering(CHATTER_FRACTION, reference) && !warned_unstable && comm->me == 0) {
       error->warning(FLERR, "{} {}: the plate force alternates from step to step by {:.3g} N "
                      "({:.2g} % of it, over the last {} steps): its contacts are at the edge of "
