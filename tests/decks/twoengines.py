@@ -127,8 +127,8 @@ PLATE = ("material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 
 
 
 def bag_model_lammps(top):
-    """A filled bag (fill.data) with the model of inputs/between_plates.lmp, sand.lmp and
-    yarn.lmp, the fixed bottom plate and gravity; top: the top plate's arguments after 'zplane'."""
+    """A filled bag (fill.data) with the model of inputs/between_plates.lmp, sand.lmp, fabric.lmp
+    and yarn.lmp, the fixed bottom plate and gravity; top: the top plate's arguments after 'zplane'."""
     return f"""
 units si
 atom_style bpm/sphere
@@ -136,12 +136,13 @@ boundary f f f
 comm_modify vel yes cutoff 0.010
 newton on off
 read_data fill.data
-special_bonds lj 1 1 1 coul 1 1 1
+variable s equal 0.005
 include ${{tbags}}/inputs/sand.lmp
+include ${{tbags}}/inputs/fabric.lmp
 pair_style gran/hertz/rolling epsd
-pair_coeff 1 1 material 0.75e9 0.1 friction 0.26 rolling 0.05 restitution 0.2
+pair_coeff 1 1 material ${{fabric_E}} ${{fabric_nu}} friction ${{fabric_mu}} rolling ${{fabric_mur}} restitution 0.2
 pair_coeff 2 2 material ${{sand_E}} ${{sand_nu}} friction ${{sand_mu}} rolling ${{sand_mur}} restitution 0.2
-pair_coeff 1 2 friction 0.26 rolling 0.05 restitution 0.2
+pair_coeff 1 2 friction ${{fabric_mu}} rolling ${{fabric_mur}} restitution 0.2
 include ${{tbags}}/inputs/yarn.lmp
 timestep 1.5e-6
 fix bottom all wall/gran/servo zplane -0.0025 +1 {PLATE}
