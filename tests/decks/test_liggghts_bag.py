@@ -76,3 +76,20 @@ def test_two_ranks(runs):
     d = max(diff(runs["liggghts2"], runs["liggghts1"], cols) for cols in (("fx", "fy", "fz"), ("x", "y", "z")))
     print("tiny bag: LIGGGHTS 2 ranks vs 1 rank %.2e" % d)
     assert d < 1e-8
+
+
+@pytest.mark.parametrize("fabric", ["words", "woven"])
+def test_fabric_in_liggghts(tiny_filled, tmp_path, fabric):
+    """inputs/liggghts/model.lig offers the fabric words (the yarn bond without its shear spring)
+    and stops on woven, which needs bonded particles that do not touch, naming LAMMPS."""
+    fill = tiny_filled / "fill.data"
+    convert(fill, tmp_path / "fill.liggghts.data")
+    res = lmprun.run(bag_deck_liggghts(top_plate(fill), 10, FIELDS), tmp_path, engine="liggghts",
+                     variables={"fabric": fabric})
+    if fabric == "words":
+        res.check("liggghts")
+        log = (tmp_path / "log.lammps").read_text().splitlines()
+        coeff = [l for l in log if l.lstrip().startswith("bond_coeff") and "YARN_PP_TAPE" in l]
+        assert coeff and coeff[-1].rstrip().endswith("r0 0.005 shear 0"), coeff    # (echoed, substituted)
+    else:
+        assert res.returncode != 0 and "woven: run LAMMPS" in res.output
