@@ -106,6 +106,8 @@ def process(run, args, several):
     out = run_outdir(run.path, args, several)
     lines, written = [], []
     half = args.band / 1000 if args.band else None
+    # the load path at every dump (loadpath.csv); the network's summary lines reuse it
+    found = loadpath.by_step(run) if "network" in args.only and run.steps("contacts") else None
     if "shear" in args.only:
         fig, st = shear.figure([run])
         written += style.save(fig, out / "shear", args.format, args.dpi)
@@ -118,13 +120,11 @@ def process(run, args, several):
             written += style.save(fig, out / ("%s_u%.1fmm" % (name, st["u_mm"])), args.format, args.dpi)
             lines.append("%s: %s" % (name, module.describe(st)))
             if name == "network":
-                b = run.bonds(step) if run.dump("bonds", step).exists() else None
-                r = loadpath.through_plane(run.grains(step), run.contacts(step), b=b)
                 lines.append("u %.1f mm: %s" % (st["u_mm"], loadpath.describe(
-                    r, run.at_step(step, "S_N"), run.at_step(step, "Fv_N"))))
-    if "network" in args.only and run.steps("contacts"):
+                    found[step], run.at_step(step, "S_N"), run.at_step(step, "Fv_N"))))
+    if found:
         out.mkdir(parents=True, exist_ok=True)
-        loadpath.write_csv(loadpath.table(run), out / "loadpath.csv")
+        loadpath.write_csv(loadpath.table(run, found), out / "loadpath.csv")
         written.append(out / "loadpath.csv")
     if args.vtk:
         written += vtkout.convert(run, out / "paraview" if args.outdir else None)

@@ -16,15 +16,15 @@ from tbagspost import dumps, style
 
 
 def read_press(path):
-    """(gap mm, F_v N, header dict) of a press.csv; the header line gives gap0_mm, H_mm, fabric."""
+    """(columns, header dict) of a press.csv: {name: array} (gap_mm, Fv_N, ..., broken_bonds);
+    the header line gives gap0_mm, H_mm, fabric."""
     lines = Path(path).read_text().splitlines()
     head = lines[0].lstrip("# ").split()
     meta = dict(zip(head[1::2], head[2::2]))
     rows = [line for line in lines[1:] if line and not line.startswith("#")]
     names = rows[0].split(",")
     data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
-    col = {n: data[:, k] for k, n in enumerate(names)}
-    return col["gap_mm"], col["Fv_N"], meta
+    return {n: data[:, k] for k, n in enumerate(names)}, meta
 
 
 def gap_at(gap, force, target):
@@ -49,8 +49,9 @@ def force_at(gap, force, g):
 def alone(empty_csv, filled_csv, Fv):
     """The numbers of one fabric: dict with the filled bag's gap at F_v, the empty bag's force
     there and its share of F_v, and the empty bag's force at its last row."""
-    ge, Fe, meta = read_press(empty_csv)
-    gf, Ff, _ = read_press(filled_csv)
+    e, meta = read_press(empty_csv)
+    f, _ = read_press(filled_csv)
+    ge, Fe, gf, Ff = e["gap_mm"], e["Fv_N"], f["gap_mm"], f["Fv_N"]
     g = gap_at(gf, Ff, Fv)
     if g is None:
         raise ValueError("%s: the filled bag never reaches F_v = %g N (largest %.1f N)" % (filled_csv, Fv, Ff.max()))
@@ -81,13 +82,12 @@ def matsuoka_liu(T, B, H, Kp, sigma3=0.0):
 def strength(press_csv):
     """(the largest row mean of F_v up to the row where the first bond broke (N), that row's gap
     in mm); None if no bond broke."""
-    lines = [line for line in Path(press_csv).read_text().splitlines() if line and not line.startswith("#")]
-    names = lines[0].split(",")
-    rows = [dict(zip(names, map(float, line.split(",")))) for line in lines[1:]]
-    k = next((i for i, r in enumerate(rows) if r.get("broken_bonds", 0) > 0), None)
-    if k is None:
+    col, _ = read_press(press_csv)
+    broke = np.nonzero(col["broken_bonds"] > 0)[0]
+    if len(broke) == 0:
         return None
-    return max(r["Fv_N"] for r in rows[:k + 1]), rows[k]["gap_mm"]
+    k = broke[0]
+    return float(col["Fv_N"][:k + 1].max()), float(col["gap_mm"][k])
 
 
 def strength_check(press_csv, nx, ny, nz, Kp):
@@ -115,7 +115,7 @@ def walls(ax, folder, g_mm, title):
     plates; sand grains in grey."""
     steps = sorted(int(p.name.rsplit(".", 1)[1]) for p in Path(folder).glob("dump.grains.*")
                    if p.name.rsplit(".", 1)[1].isdigit())
-    gap, _, meta = read_press(Path(folder) / "press.csv")
+    gap = read_press(Path(folder) / "press.csv")[0]["gap_mm"]
     # dumps every quarter of the travel from the first row: their gaps in order
     gaps = np.linspace(gap[0], gap[-1], len(steps)) if len(steps) > 1 else gap[:1]
     k = int(np.argmin(np.abs(gaps - g_mm)))
@@ -124,7 +124,7 @@ def walls(ax, folder, g_mm, title):
     mid = np.abs(y - np.median(y[gr.bag])) < 0.0026
     for mask, kw in ((mid & ~gr.bag, dict(color="0.7", s=6)), (mid & gr.bag, dict(color="C0", s=8))):
         ax.scatter(gr.pos[mask, 0] * 1e3, gr.pos[mask, 2] * 1e3, **kw)
-    zbot = -2.5
+    zbot = -0.5 * SPACING * 1e3    # mm, the bottom plate (in.press)
     for z in (zbot, zbot + gaps[k]):
         ax.axhline(z, color="k", lw=2)
     ax.set_aspect("equal")
@@ -140,8 +140,8 @@ def figure(results, folders):
     for k, r in enumerate(results):
         e, f = folders[r["fabric"]]
         for folder, ls, what in ((f, "-", "filled"), (e, ":", "empty")):
-            g, F, _ = read_press(Path(folder) / "press.csv")
-            ax.plot(g / r["H_mm"], F, color="C%d" % k, ls=ls, label="%s, %s" % (r["fabric"], what))
+            col, _ = read_press(Path(folder) / "press.csv")
+            ax.plot(col["gap_mm"] / r["H_mm"], col["Fv_N"], color="C%d" % k, ls=ls, label="%s, %s" % (r["fabric"], what))
         ax.plot(r["gap_filled_mm"] / r["H_mm"], r["Fv"], "o", color="C%d" % k, ms=4)
     ax.axhline(results[0]["Fv"], color="0.5", lw=0.8, label="F_v (the demo's stress)")
     ax.set_yscale("symlog", linthresh=max(1.0, results[0]["Fv"] / 10))

@@ -82,16 +82,23 @@ def describe(r, S=None, Fv=None):
     return line
 
 
-def table(run):
-    """The load path at every dump step of a shear run: rows of u (mm), the plate's F_v and S (N),
-    the vertical and horizontal totals across the plane and each class's (N)."""
+def at_step(run, step):
+    """through_plane() of a shear run's dump step, with its bonds where their dump exists."""
+    b = run.bonds(step) if run.dump("bonds", step).exists() else None
+    return through_plane(run.grains(step), run.contacts(step), b=b)
+
+
+def by_step(run):
+    """at_step() of every dump step of a shear run, in order."""
+    return OrderedDict((step, at_step(run, step)) for step in run.steps("contacts"))
+
+
+def table(run, found=None):
+    """The load path at every dump step of a shear run (found: by_step(run), if already made):
+    rows of u (mm), the plate's F_v and S (N), the vertical and horizontal totals across the plane
+    and each class's (N)."""
     rows = []
-    for step in run.steps("contacts"):
-        g = run.grains(step)
-        c = run.contacts(step)
-        bond_dump = run.dump("bonds", step)
-        b = run.bonds(step) if bond_dump.exists() else None
-        r = through_plane(g, c, b=b)
+    for step, r in (found if found is not None else by_step(run)).items():
         row = OrderedDict(u_mm=run.at_step(step), Fv_N=run.at_step(step, "Fv_N"), S_N=run.at_step(step, "S_N"),
                           Fz_N=r["Fz"], Fx_N=r["Fx"])
         for k in CLASSES:
