@@ -128,7 +128,7 @@ void BondBPMYarn::compute(int eflag, int vflag)
     if (!hist) error->one(FLERR, "bond_style bpm/yarn: a bond without its history slot");
     if (!(hist[yarn::R0] > 0.0)) {    // first seen: its rest length (the type's r0, else now)
       const double d[3] = {x[i2][0] - x[i1][0], x[i2][1] - x[i1][1], x[i2][2] - x[i1][2]};
-      hist[yarn::R0] = coeffs[type].r0 > 0.0 ? coeffs[type].r0 : sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      hist[yarn::R0] = coeffs[type].rest_length(sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
       for (int k = 1; k < yarn::NHISTORY; k++) hist[k] = 0.0;
     }
     yarn::Result o;

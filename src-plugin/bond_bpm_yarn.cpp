@@ -177,9 +177,8 @@ void BondBPMYarn::store_data()
       if (j == -1) error->one(FLERR, "{}: bonded atom {} is missing", STYLE, atom->bond_atom[i][m]);
       double d[3] = {x[j][0] - x[i][0], x[j][1] - x[i][1], x[j][2] - x[i][2]};
       domain->minimum_image(d[0], d[1], d[2]);
-      const double r0 = coeffs[atom->bond_type[i][m]].r0;
-      fix_bond_history->update_atom_value(i, m, yarn::R0,
-                                          r0 > 0.0 ? r0 : sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      const double now = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      fix_bond_history->update_atom_value(i, m, yarn::R0, coeffs[atom->bond_type[i][m]].rest_length(now));
       for (int k = 1; k < yarn::NHISTORY; k++) fix_bond_history->update_atom_value(i, m, k, 0.0);
     }
   }

@@ -43,7 +43,6 @@ void BondYarn::allocate()
   for (int i = 0; i <= n; i++) setflag[i] = 0;
   coeffs.clear();
   coeffs.resize(n + 1);
-  r0.assign(n + 1, 0.0);
 }
 
 // bond_coeff T table FILE KEYWORD diameter D r0 R0 [break EPS] [damping GN]
@@ -53,11 +52,9 @@ void BondYarn::coeff(int narg, char **arg)
   int ilo, ihi;
   utils::bounds(FLERR, arg[0], 1, atom->nbondtypes, ilo, ihi, error);
   YarnCoeff c;
-  double len = 0.0;
-  parse_yarn_coeff(lmp, STYLE, narg, arg, c, &len);
+  parse_yarn_coeff(lmp, STYLE, narg, arg, c, true);
   for (int i = ilo; i <= ihi; i++) {
     coeffs[i] = c;
-    r0[i] = len;
     setflag[i] = 1;
   }
 }
@@ -71,13 +68,13 @@ void BondYarn::init_style()
 
 double BondYarn::equilibrium_distance(int i)
 {
-  return r0[i];
+  return coeffs[i].r0;
 }
 
 double BondYarn::axial(int type, double r, double vn, double &eps) const
 {
   const yarn::Params &p = coeffs[type].p;
-  eps = yarn::strain(r, r0[type]);
+  eps = yarn::strain(r, coeffs[type].r0);
   double emax = 0.0;
   return yarn::axial_damped(p, yarn::axial_force(p, eps, &emax, false), eps, vn);
 }
@@ -123,7 +120,7 @@ void BondYarn::compute(int eflag, int vflag)
     if (newton_bond || i2 < nlocal)
       for (int k = 0; k < 3; k++) f[i2][k] -= del[k] * fbond;
     if (evflag) {
-      const double ebond = eflag ? yarn::axial_energy(coeffs[type].p, eps, r0[type]) : 0.0;
+      const double ebond = eflag ? yarn::axial_energy(coeffs[type].p, eps, coeffs[type].r0) : 0.0;
       ev_tally(i1, i2, nlocal, newton_bond, ebond, fbond, del[0], del[1], del[2]);
     }
   }
@@ -139,7 +136,7 @@ double BondYarn::single(int type, double rsq, int, int, double &fforce)
   fforce = -fax / r;
   svector[0] = eps;
   svector[1] = fax;
-  return yarn::axial_energy(coeffs[type].p, eps, r0[type]);
+  return yarn::axial_energy(coeffs[type].p, eps, coeffs[type].r0);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -147,8 +144,7 @@ double BondYarn::single(int type, double rsq, int, int, double &fforce)
 void BondYarn::write_restart(FILE *fp)
 {
   for (int i = 1; i <= atom->nbondtypes; i++) {
-    write_yarn_coeff(fp, coeffs[i]);
-    fwrite(&r0[i], sizeof(double), 1, fp);
+    write_yarn_coeff(fp, coeffs[i]);    // r0 included
   }
 }
 
@@ -157,8 +153,6 @@ void BondYarn::read_restart(FILE *fp)
   allocate();
   for (int i = 1; i <= atom->nbondtypes; i++) {
     read_yarn_coeff(lmp, fp, coeffs[i]);
-    if (comm->me == 0) utils::sfread(FLERR, &r0[i], sizeof(double), 1, fp, nullptr, error);
-    MPI_Bcast(&r0[i], 1, MPI_DOUBLE, 0, world);
     setflag[i] = coeffs[i].set ? 1 : 0;
   }
 }
@@ -168,6 +162,6 @@ void BondYarn::write_data(FILE *fp)
   for (int i = 1; i <= atom->nbondtypes; i++) {
     const YarnCoeff &c = coeffs[i];
     utils::print(fp, "{} table {} {} diameter {:.17g} r0 {:.17g} break {:.17g} damping {:.17g}\n", i,
-                 c.file, c.keyword, c.p.d, r0[i], c.p.eps_break, c.p.gn);
+                 c.file, c.keyword, c.p.d, c.r0, c.p.eps_break, c.p.gn);
   }
 }

@@ -29,7 +29,6 @@ class BondYarn : public Bond {
 
  protected:
   std::vector<YarnCoeff> coeffs;
-  std::vector<double> r0;
   void allocate();
   // axial force (tension positive) and strain of a bond of the given type and length
   double axial(int type, double r, double vn, double &eps) const;

@@ -121,9 +121,8 @@ void LAMMPS_NS::read_yarn_table(LAMMPS *lmp, const char *style, const std::strin
 }
 
 void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg,
-                                 YarnCoeff &c, double *r0)
+                                 YarnCoeff &c, bool axial_only)
 {
-  const bool axial_only = r0 != nullptr;
   c.r0 = -1.0;
   if (narg < 4 || strcmp(arg[1], "table") != 0)
     fail(lmp, style, std::string("write 'bond_coeff T table FILE KEYWORD diameter D") +
@@ -198,8 +197,7 @@ void LAMMPS_NS::parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char 
   }
   if (c.p.d <= 0.0)
     fail(lmp, style, "bond_coeff needs 'diameter D' with D > 0 (m)");
-  if (axial_only) *r0 = c.r0;
-  if (axial_only && *r0 <= 0.0)
+  if (axial_only && c.r0 <= 0.0)
     fail(lmp, style, "bond_coeff needs 'r0 R0' with R0 > 0 (m), the unstretched length");
   const double last = c.curve->eps.back();
   if (brk < 0.0) brk = last;

@@ -22,14 +22,16 @@ struct YarnCoeff {
   bool set = false;
 
   YarnCoeff() { p.curve = curve.get(); }
+  // a bond's rest length, given its length 'now' when first seen: the type's r0 if set
+  double rest_length(double now) const { return r0 > 0.0 ? r0 : now; }
 };
 
 // Parse 'bond_coeff T table FILE KEYWORD diameter D poisson NU [E E] [shear KAPPA]
 // [break EPS] [damping GN GS GR] [unload elastic|plastic] [r0 R0]' from arg[1..]; 'style' names
-// the bond style in messages. With r0 given (bond_style yarn): the axial law only, 'r0 R0'
+// the bond style in messages. axial_only (bond_style yarn): the axial law only, 'r0 R0'
 // required, 'damping GN' (axial) and no bending, shear, twisting or plastic keywords.
 void parse_yarn_coeff(LAMMPS *lmp, const char *style, int narg, char **arg, YarnCoeff &c,
-                      double *r0 = nullptr);
+                      bool axial_only = false);
 
 // Read the section KEYWORD of a yarn table file:
 //   KEYWORD

@@ -1,6 +1,6 @@
 """bond_style yarn (axial yarn law for any atom style): energy conservation of a spinning
 dumbbell that stays in tension, bond_write against the table, use inside bond_style hybrid,
-breaking, write_data round trip, bad input."""
+breaking, write_data and restart round trips, bad input."""
 import numpy as np
 import pytest
 
@@ -133,3 +133,25 @@ def test_breaks_and_writes_data(tmp_path):
 def test_bad_input(tmp_path, coeff, message):
     res = lmprun.run(WRITE.replace(COEFF, coeff), tmp_path)
     assert res.returncode != 0 and "Bond style yarn" in res.error_line() and message in res.error_line(), res.error_line()
+
+
+def test_restart_round_trip(tmp_path):
+    """write_restart half way, read_restart and run the second half: the same final state as the
+    run without a break (the bond's table, diameter and r0 come back from the restart file)."""
+    deck = DUMBBELL.replace("BONDSTYLE", "bond_style yarn\nbond_coeff * " + COEFF)
+    whole = thermo(lmprun.run(deck, tmp_path / "whole").check().output)
+    first = deck.replace("run 100000", "run 50000\nwrite_restart half.restart")
+    lmprun.run(first, tmp_path / "half").check()
+    second = """read_restart half.restart
+variable eps equal (sqrt((x[2]-x[1])^2+(y[2]-y[1])^2)-0.005)/0.005
+thermo_style custom step ke pe etotal v_eps
+thermo_modify format float %.15g
+thermo 1000
+fix 1 all nve
+timestep 5e-8
+run 50000
+"""
+    resumed = thermo(lmprun.run(second, tmp_path / "half").check().output)
+    err = np.abs(resumed[-1, 1:] - whole[-1, 1:]) / np.abs(whole[-1, 1:])
+    print("after the restart at 50000 steps, the final ke, pe, etotal, strain differ by %s (relative)" % err)
+    assert resumed[-1, 0] == whole[-1, 0] == 100000 and err.max() < 1e-9
