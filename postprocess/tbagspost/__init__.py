@@ -18,6 +18,10 @@ Modules, one job each:
   realizations  several realizations of one test: mean curves, spread of the reported figures
   hysteresis  loop measures (K_eq, W_d, h_eq), Ramberg-Osgood and Masing, the fit
   cyclic    cyclic runs (inputs/in.cyclic): cycles, table, R-O fit per load, figures, report
+  isolator  isolator models (R-O/Masing, R-O/Phillips-Hashash, bilinear, Bouc-Wen, slider in
+            series) run along a displacement history, their fits, the recommended one
+  design    a designer's properties of a loop (ASCE 7-22 / AASHTO) and property modification factors
+  isolator_report  the isolator section of a cyclic report (models, properties, factors)
   stack     a stack of bags on films (in.cyclic -var bags N): displacement split, slip fraction
   vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
   cli       the command line (python3 -m tbagspost --help)

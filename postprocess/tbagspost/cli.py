@@ -7,8 +7,8 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import (cyclic, fail, loadpath, network, realizations, shape, shear, stack, style, triax,
-                       vtkout)
+from tbagspost import (cyclic, fail, isolator_report, loadpath, network, realizations, shape, shear, stack,
+                       style, triax, vtkout)
 from tbagspost.run import Run
 
 DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
@@ -38,6 +38,12 @@ report.md (conditions and tables for a design note). A cyclic RUN_DIR of a stack
 from in.cyclic -var bags N) is among them as one more run, and also gets
 stack-split-<run>.png (slip fraction, the amplitude of each bag's shear and each film's slip,
 the film interfaces' loops), stack_split-<run>.csv and a stack section in report.md.
+Every cyclic report ends with the isolator section (isolator.md beside it): the R-O/Masing,
+R-O/Phillips-Hashash, bilinear and Bouc-Wen models fitted per load with their errors and the
+recommended one, the designer's properties (k_eff, beta_eff, Q_d, K_d, D_y) per amplitude and
+their property modification factors (isolator_models.csv, design_properties.csv); a stack gets a
+friction slider in series with its bags' model. Runs of the same F_v are fills of one load;
+--slow RUN_DIR (a run of a load at half the speed) adds the rate factors.
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.
 Shape and network figures are made at the dump nearest to each --u (default: the last dump).
 With --realizations, the RUN_DIRs are realizations of one test (fills of different seeds; runs of
@@ -61,6 +67,9 @@ def parse(argv=None):
     ap.add_argument("--realizations", action="store_true",
                     help="the runs are realizations of one test: their spread (realizations.md, .csv, .png)")
     ap.add_argument("--dt", type=float, default=None, help="time step (s) if the run has no log")
+    ap.add_argument("--slow", action="append", default=[], metavar="RUN_DIR",
+                    help="a cyclic run at half the speed of a load among the RUN_DIRs (repeatable): "
+                         "the rate's property modification factors")
     ap.add_argument("--format", default="png", help="figure formats, e.g. png,pdf (default png)")
     ap.add_argument("--dpi", type=float, default=None, help="resolution of raster figures (default 200)")
     args = ap.parse_args(argv)
@@ -191,6 +200,11 @@ def main(argv=None):
                 text += section
                 with open(out / "report.md", "a") as fh:
                     fh.write(section)
+        more, section = isolator_report.write(cyclic_runs, out, [cyclic.CyclicRun(p) for p in args.slow])
+        written += more
+        text += section
+        with open(out / "report.md", "a") as fh:
+            fh.write(section)
         print(text)
         for path in written:
             print("wrote %s" % path)

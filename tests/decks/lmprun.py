@@ -21,6 +21,9 @@ PLUGIN = Path(os.environ.get("LAMMPS_PLUGIN_PATH", "")) / "tbagsplugin.so"
 
 
 INPUTS = ROOT / "inputs"
+# the sanitized build (ASan + UBSan) runs LAMMPS 5-10 times slower: every time limit a test sets
+# is multiplied by this (measured: ./tbags fabric on the tiny bag took more than 1,200 s there)
+SLOWDOWN = 8 if os.environ.get("TBAGS_SANITIZE") == "1" else 1
 # the deck tests' bag: 258 particles, 153 grains; each stage takes seconds
 TINY_BAG = {"nx": 9, "ny": 9, "nz": 5}
 
@@ -97,7 +100,7 @@ def run(deck, workdir, np_ranks=1, variables=None, args=(), plugin_path=True, ti
     else:
         deck_file = workdir / "in.test"
         deck_file.write_text(textwrap.dedent(deck))
-    return lammps.run(deck_file, workdir, np_ranks, variables, args, timeout=timeout,
+    return lammps.run(deck_file, workdir, np_ranks, variables, args, timeout=timeout * SLOWDOWN,
                       plugin=plugin_path, engine=engine)
 
 

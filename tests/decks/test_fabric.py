@@ -132,7 +132,7 @@ def test_empty_woven_bag_carries_no_load_the_solid_cage_does(tmp_path):
     env = dict(os.environ, TBAGS_BUILD_DIR=os.environ.get("TBAGS_BUILD", str(lmprun.ROOT / "build")))
     r = subprocess.run([str(lmprun.ROOT / "tbags"), "fabric", "--size", "9", "9", "5", "--fabrics",
                         "woven,solid", "-np", "1", "--out", str(out)], env=env, capture_output=True,
-                       text=True, timeout=1200)
+                       text=True, timeout=1200 * lmprun.SLOWDOWN)
     print(r.stdout[-1500:])
     assert r.returncode == 0, r.stderr[-2000:]
     rows = {row["fabric"]: row for row in csv.DictReader(open(out / "fabric-alone.csv"))}

@@ -26,7 +26,7 @@ def test_out_never_clears_a_users_folder(tmp_path):
     mine.mkdir()
     (mine / "thesis.tex").write_text("keep me")
     r = subprocess.run([str(lmprun.ROOT / "tbags"), "shear", "--out", str(mine)] + TINY,
-                       env=launcher_env(), capture_output=True, text=True, timeout=600)
+                       env=launcher_env(), capture_output=True, text=True, timeout=600 * lmprun.SLOWDOWN)
     assert r.returncode != 0 and "is not empty and was not made by ./tbags shear" in r.stderr
     assert (mine / "thesis.tex").read_text() == "keep me"
 
@@ -43,7 +43,7 @@ def test_paths_with_spaces(tmp_path):
     out = tmp_path / "out dir"
     r = subprocess.run([str(repo / "tbags"), "shear", "--out", str(out)] + TINY,
                        env=launcher_env(TBAGS_CACHE=str(tmp_path / "cache")),
-                       capture_output=True, text=True, timeout=900)
+                       capture_output=True, text=True, timeout=900 * lmprun.SLOWDOWN)
     print(r.stdout[-3000:], r.stderr[-2000:])
     assert r.returncode == 0
     assert "SHEARED: u 0.300 mm" in r.stdout
@@ -117,11 +117,11 @@ def test_resume_an_interrupted_run(tmp_path):
     # anything runs, every file as it was (be13c81 removed the folder, or re-made the fill)
     before = checksums(out)
     for extra in ([], ["--resume", "-var", "e0", "0.70"], ["--resume", "-var", "v", "0.03"]):
-        r = subprocess.run(argv + extra, env=launcher_env(), capture_output=True, text=True, timeout=300)
+        r = subprocess.run(argv + extra, env=launcher_env(), capture_output=True, text=True, timeout=300 * lmprun.SLOWDOWN)
         assert r.returncode != 0 and "Nothing was changed" in r.stderr, r.stdout + r.stderr
         assert ("--resume to continue" in r.stderr) == (not extra)
         assert checksums(out) == before
-    r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900)
+    r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900 * lmprun.SLOWDOWN)
     print(r.stdout[-3000:], r.stderr[-2000:])
     assert r.returncode == 0
     assert "fill in %s: done before, reused" % out in r.stdout
@@ -135,14 +135,14 @@ def test_resume_an_interrupted_run(tmp_path):
     assert rows["u_mm"][-1] == pytest.approx(0.79, abs=2e-3)
     assert (out / "screen.shear.txt.1").is_file() and (out / "figures" / "shear.png").is_file()
     # called again: the finished run is kept, not run
-    r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900)
+    r = subprocess.run(argv + ["--resume"], env=launcher_env(), capture_output=True, text=True, timeout=900 * lmprun.SLOWDOWN)
     assert r.returncode == 0 and "shear in %s: finished before, kept" % out in r.stdout
     # what a resume gives (README): the rows up to the checkpoint are the straight run's, bit for
     # bit; after it the run parts as another sample of the fill would, within the spread of S
     # between fills (TINY_SD_S)
     straight = tmp_path / "straight"
     r = subprocess.run([w if w != str(out) else str(straight) for w in argv], env=launcher_env(),
-                       capture_output=True, text=True, timeout=900)
+                       capture_output=True, text=True, timeout=900 * lmprun.SLOWDOWN)
     assert r.returncode == 0
     resumed_rows = [line for line in (out / "shear.csv").read_text().splitlines() if line[:1].isdigit()]
     straight_rows = [line for line in (straight / "shear.csv").read_text().splitlines() if line[:1].isdigit()]

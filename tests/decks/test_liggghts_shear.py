@@ -99,7 +99,7 @@ def test_launcher_engine_liggghts(tmp_path):
             "-var", "ufinal", "0.0003"]
     env = dict(os.environ, TBAGS_BUILD_DIR=os.environ.get("TBAGS_BUILD", str(lmprun.ROOT / "build")))
     r = subprocess.run([str(lmprun.ROOT / "tbags"), "shear", "--engine", "liggghts", "--out", str(out)] + tiny,
-                       env=env, capture_output=True, text=True, timeout=900)
+                       env=env, capture_output=True, text=True, timeout=900 * lmprun.SLOWDOWN)
     print(r.stdout[-2000:], r.stderr[-2000:])
     assert r.returncode == 0 and "shear (LIGGGHTS)" in r.stdout and "SHEARED: u 0.299" in r.stdout
     d = read_csv(out / "shear.csv")

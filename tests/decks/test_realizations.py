@@ -16,7 +16,7 @@ def test_two_realizations_write_band_and_table(tmp_path):
     env = dict(os.environ, TBAGS_BUILD_DIR=os.environ.get("TBAGS_BUILD", str(lmprun.ROOT / "build")))
     r = subprocess.run([str(lmprun.ROOT / "tbags"), "shear", "--realizations", "2", "--out", str(out),
                         "-np", "2", "-var", "seed", "101"] + TINY,
-                       env=env, capture_output=True, text=True, timeout=1200)
+                       env=env, capture_output=True, text=True, timeout=1200 * lmprun.SLOWDOWN)
     print(r.stdout[-3000:], r.stderr[-2000:])
     assert r.returncode == 0
     assert "2 realizations (seeds 101 to 102)" in r.stdout

@@ -1,0 +1,173 @@
+"""The isolator section of a cyclic report: the models of isolator.py fitted per load with their
+errors and the recommended one, the designer's properties of design.py per amplitude, and the
+property modification factors; for a stack, a friction slider in series with the bags' model.
+
+Runs of the same load (F_v within 1 %) are fills of it (realizations): the first is the nominal
+one, the others give the 'fills' factors. A half-speed run of a load (`slow`) gives the 'rate'
+factors. Writes isolator.md, isolator_models.csv, design_properties.csv.
+"""
+from pathlib import Path
+
+import numpy as np
+
+from tbagspost import design, isolator
+
+MODEL_KEYS = ("R-O, Masing", "R-O, Phillips-Hashash", "bilinear", "Bouc-Wen")
+
+
+def same_load(a, b):
+    return abs(a.fv_N - b.fv_N) <= 0.01 * max(abs(a.fv_N), 1e-9)
+
+
+def group_loads(runs):
+    """[(nominal run, [other fills])] in the order of the runs."""
+    groups = []
+    for r in runs:
+        for g in groups:
+            if same_load(g[0], r):
+                g[1].append(r)
+                break
+        else:
+            groups.append((r, []))
+    return groups
+
+
+def fmt_params(fit):
+    out = []
+    for k, v in fit.model.params().items():
+        sd = fit.sd.get(k)
+        out.append("%s %.4g" % (k, v) + (" +- %.2g" % sd if sd is not None and np.isfinite(sd) else ""))
+    return ", ".join(out)
+
+
+def film_strength(run):
+    """The film's sliding force (N) of a stack run: the largest |force on film 1 from the bag
+    above| over the last cycle of its largest amplitude (the plateau while it slips)."""
+    amp = max(a for a, _, _ in run.cycles())
+    last = [rows for a, _, rows in run.cycles() if a == amp][-1]
+    t = run.stack["t"]
+    sel = np.isin(np.round(t, 9), np.round(last["time_s"], 9))
+    return float(np.max(np.abs(run.stack["film1_Fabove"][sel])))
+
+
+def models_section(name, fits, best, why):
+    lines = ["", "### %s" % name, "",
+             "| model | parameters (+- 1 sd; mm, N) | rms of S along the loops (of S_a) | worst K_eq error |"
+             " worst h_eq error |", "|---|---|---|---|---|"]
+    for f in fits:
+        lines.append("| %s%s | %s | %.1f %% | %.1f %% | %.3f |" % (
+            f.name, " (recommended)" if f is best else "", fmt_params(f), 100 * f.rms_S,
+            100 * f.worst_K, f.worst_h))
+    lines += ["", "Recommended: " + why + ".", "",
+              "| u_a (mm) | K_eq DEM (N/mm) | " + " | ".join("K_eq %s" % f.name for f in fits) +
+              " | h_eq DEM | " + " | ".join("h_eq %s" % f.name for f in fits) + " |",
+              "|---" * (3 + 2 * len(fits)) + "|"]
+    for k in range(len(fits[0].K_eq)):
+        lines.append("| %.3g | %.1f | %s | %.3f | %s |" % (
+            fits[0].u_a[k], fits[0].K_eq[k][0], " | ".join("%.1f" % f.K_eq[k][1] for f in fits),
+            fits[0].h_eq[k][0], " | ".join("%.3f" % f.h_eq[k][1] for f in fits)))
+    return lines
+
+
+def write(runs, out, slow=None):
+    """The section for cyclic.CyclicRun / stack.StackRun runs; slow: {F_v-matching run} runs at
+    half speed. Returns (written paths, Markdown text)."""
+    from tbagspost import stack as stackmod
+
+    out = Path(out)
+    slow = list(slow or [])
+    singles = [r for r in runs if not isinstance(r, stackmod.StackRun)]
+    stacks = [r for r in runs if isinstance(r, stackmod.StackRun)]
+    text = ["", "## Isolator models and design properties", "",
+            "Models (tbagspost/isolator.py): R-O with Masing's rules (the fit above); R-O with "
+            "Phillips and Hashash's (2009) damping reduction F(u_m) = p1 - p2 (1 - K_sec/K_0)^p3 "
+            "(backbone through the tips, F fitted to h_eq); a bilinear isolator (K_u, Q_d, K_d; "
+            "D_y = Q_d/(K_u - K_d)) and Bouc-Wen (K, a, D_y, n, b), both by least squares on S. "
+            "Each is run through the same displacement history as the DEM (per amplitude the cycle "
+            "before the last, then the last, which is compared). Recommended: within 10 % on K_eq "
+            "and 0.03 on h_eq at every amplitude with the smallest rms error of S, else the smallest "
+            "rms error."]
+    model_rows, prop_rows, bag_models = [], [], {}
+    for run, fills in group_loads(singles):
+        lanes = isolator.lanes_of(run.cycles())
+        fits = isolator.fit_all(lanes)
+        best, why = isolator.recommend(fits)
+        bag_models[run.fv_N] = best.model
+        text += models_section("%s (%s)" % (run.label.replace("$", ""), run.name), fits, best, why)
+        for f in fits:
+            row = dict(run=run.name, Fv_N=run.fv_N, model=f.name, recommended=f is best,
+                       rms_S=f.rms_S, worst_K_rel=f.worst_K, worst_h_abs=f.worst_h)
+            row.update({k: float(v) for k, v in f.model.params().items()})
+            row.update({"%s_sd" % k: float(v) for k, v in f.sd.items()})
+            model_rows.append(row)
+        table = design.run_table(run)
+        s = next((r for r in slow if same_load(r, run)), None)
+        lam = design.lambdas(table, design.run_table(s) if s else None,
+                             [design.run_table(f) for f in fills])
+        prop_rows += design.property_rows(run.name, run.fv_N, table, lam)
+        text += properties_section(run, table, lam, s, fills)
+    for run in stacks:
+        bag = min(bag_models.items(), key=lambda kv: abs(kv[0] - run.fv_N), default=(None, None))
+        if bag[1] is None or abs(bag[0] - run.fv_N) > 0.01 * run.fv_N:
+            text += ["", "### %s" % run.label.replace("$", ""), "",
+                     "No single bag at this load among the runs: the slider + bags model needs one "
+                     "(give a single bag's cyclic run at this load beside the stack: ./tbags plot "
+                     "BAG_RUN STACK_RUN)."]
+            continue
+        mu_N = film_strength(run)
+        model = isolator.Slider(bag=bag[1], mu_N=mu_N, bags=run.bags)
+        lanes = isolator.lanes_of(run.cycles())
+        fit = isolator.evaluate(model, lanes)
+        bags_only = isolator.evaluate(isolator.Slider(bag=bag[1], mu_N=np.inf, bags=run.bags), lanes,
+                                      label="%d bags, no slip" % run.bags)
+        text += ["", "### %s (%s)" % (run.label.replace("$", ""), run.name), "",
+                 "A friction slider of strength mu N = %.1f N (the film's largest force in the last "
+                 "cycle at the largest amplitude) in series with %d bags of the single bag's "
+                 "recommended model (%s) at the same load; no parameter fitted to the stack." % (
+                     mu_N, run.bags, bag[1].name)]
+        best, why = isolator.recommend([fit, bags_only])
+        text += [""] + models_section("stack model", [fit, bags_only], best, why)[3:]
+        model_rows.append(dict(run=run.name, Fv_N=run.fv_N, model="slider + %d bags (%s)" % (
+            run.bags, bag[1].name), recommended=True, rms_S=fit.rms_S, worst_K_rel=fit.worst_K,
+            worst_h_abs=fit.worst_h, mu_N=mu_N))
+        table = design.run_table(run)
+        lam = design.lambdas(table)
+        prop_rows += design.property_rows(run.name, run.fv_N, table, lam)
+        text += properties_section(run, table, lam, None, [])
+    written = []
+    if model_rows:
+        design.write_csv(out / "isolator_models.csv", model_rows)
+        written.append(out / "isolator_models.csv")
+    if prop_rows:
+        design.write_csv(out / "design_properties.csv", prop_rows)
+        written.append(out / "design_properties.csv")
+    md = "\n".join(text) + "\n"
+    (out / "isolator.md").write_text("# Isolator models and design properties\n" + md.split("\n", 3)[3])
+    written.append(out / "isolator.md")
+    return written, md
+
+
+def properties_section(run, table, lam, slow, fills):
+    lines = ["", "Design properties of %s (last cycle of each amplitude; ASCE 7-22 ch. 17 and AASHTO "
+             "definitions in tbagspost/design.py):" % run.label.replace("$", ""), "",
+             "| D (mm) | k_eff (N/mm) | beta_eff | Q_d (N) | K_d (N/mm) | D_y (mm) | K_u (N/mm) | "
+             "k_eff/K_eq - 1 | beta_eff - h_eq |", "|---|---|---|---|---|---|---|---|---|"]
+    for amp in sorted(lam):
+        p = table[(amp, max(c for a, c in table if a == amp))]
+        lines.append("| %.3g | %.1f | %.3f | %.1f | %.1f | %.3f | %.1f | %+.1e | %+.1e |" % (
+            p.D, p.k_eff, p.beta_eff, p.Q_d, p.K_d, p.D_y, p.K_u, p.k_eff / p.K_eq - 1,
+            p.beta_eff - p.h_eq))
+    env = design.envelope(lam)
+    sources = [s for s in ("cycles", "rate", "fills", "combined") if any(s in v for v in env.values())]
+    missing = [s for s, have in (("rate", slow is not None), ("fills", bool(fills))) if not have]
+    lines += ["", "Property modification factors (lambda_min - lambda_max over all amplitudes):", "",
+              "| property | " + " | ".join(sources) + " |", "|---" * (1 + len(sources)) + "|"]
+    for p in design.PROPS:
+        if p in env:
+            lines.append("| %s | %s |" % (p, " | ".join(
+                "%.2f - %.2f" % env[p][s] if s in env[p] else "-" for s in sources)))
+    if missing:
+        lines += ["", "Not measured for this load: %s (%s)." % (", ".join(missing), "; ".join(
+            {"rate": "a run at half the speed: tbagspost --slow RUN_DIR",
+             "fills": "other fills of the same load among the runs"}[m] for m in missing))]
+    return lines

@@ -1,0 +1,134 @@
+"""Isolator models (postprocess/tbagspost/isolator.py) and the designer's properties (design.py)
+on loops whose answers are known: each model recovers its own parameters from its own loops, the
+extended Masing rules close inner loops, Phillips and Hashash's loop dissipates F times Masing's
+energy, the properties of a bilinear loop are its own, and the modification factors are ratios."""
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+from tbagspost import design, isolator as iso  # noqa: E402
+
+AMPS = (0.25, 0.5, 1, 2, 3, 5)
+
+
+def lanes_of(model, amps=AMPS, n=200):
+    """Two sine cycles per amplitude from rest; the second is compared."""
+    th = 2 * np.pi * np.arange(2 * n) / n
+    u = [a * np.sin(th) for a in amps]
+    return iso.Lanes(u=u, S=[model.simulate(x) for x in u], start=[n] * len(amps))
+
+
+def close(fitted, true, rel):
+    for k, v in true.params().items():
+        assert fitted.params()[k] == pytest.approx(v, rel=rel), k
+
+
+@pytest.mark.parametrize("true,fit", [
+    (iso.Bilinear(K_u=500.0, Q_d=100.0, K_d=20.0), iso.fit_bilinear),
+    (iso.BoucWen(K=500.0, a=0.05, D_y=0.3, n=1.5, b=0.6), iso.fit_bouc_wen),
+    (iso.MasingRO(K0=520.0, S_y=300.0, r=4.0), iso.fit_masing),
+])
+def test_a_model_recovers_its_own_parameters(true, fit):
+    f = fit(lanes_of(true))
+    print(true.name, {k: "%.6g" % v for k, v in f.model.params().items()}, "rms %.1e" % f.rms_S)
+    close(f.model, true, 0.01)
+    assert f.rms_S < 1e-3 and f.worst_K < 1e-3 and f.worst_h < 1e-3
+
+
+def test_reduced_masing_recovers_backbone_and_reduction():
+    true = iso.MasingROF(K0=520.0, S_y=300.0, r=4.0, p1=1.0, p2=0.6, p3=1.5)
+    lanes = lanes_of(true)
+    f = iso.fit_reduced(lanes, iso.fit_masing(lanes).model)
+    print({k: "%.6g" % v for k, v in f.model.params().items()})
+    close(f.model, true, 0.01)
+
+
+def test_reduced_loop_dissipates_F_times_masing():
+    """Phillips and Hashash: the steady loop of amplitude u_m has h = F(u_m) h_Masing, and closes at
+    its tips (K_eq the same as Masing's)."""
+    rof = iso.MasingROF(K0=520.0, S_y=300.0, r=4.0, p1=0.9, p2=0.6, p3=1.5)
+    masing = iso.MasingRO(K0=520.0, S_y=300.0, r=4.0)
+    for a, d, m in zip(AMPS, lanes_of(rof).measures(), lanes_of(masing).measures()):
+        F = float(rof.F(a)[0])
+        assert d.h_eq == pytest.approx(F * m.h_eq, rel=2e-3, abs=1e-5)
+        assert d.K_eq == pytest.approx(m.K_eq, rel=1e-3)
+
+
+def test_masing_steady_loop_matches_closed_form_damping():
+    ro = iso.MasingRO(K0=520.0, S_y=300.0, r=4.0)
+    for a, d in zip(AMPS, lanes_of(ro).measures()):
+        assert d.h_eq == pytest.approx(float(ro.ro.damping(ro.ro.S(a))[0]), rel=5e-3, abs=1e-5)
+
+
+def test_extended_masing_closes_inner_loops():
+    """Load to 3, unload to 1 (an inner reversal), reload to 2, back to 1.5, then on to 3 and 4: after
+    the inner loop closes the path follows the branch it interrupted, and past 3 the backbone."""
+    ro = iso.MasingRO(K0=520.0, S_y=300.0, r=4.0)
+    seg = lambda a, b: np.linspace(a, b, 301)[1:]  # noqa: E731
+    reload = np.linspace(1.0, 4.0, 601)[1:]          # u = 2.5 is on it (k = 300)
+    u = np.concatenate([[0.0], seg(0, 3), seg(3, 1), seg(1, 2), seg(2, 1.5), reload[reload > 1.5]])
+    plain = np.concatenate([[0.0], seg(0, 3), seg(3, 1), reload])
+    S, P = ro.simulate(u), ro.simulate(plain)
+    assert u.max() == plain.max()                      # the same backbone table
+    i, j = np.flatnonzero(np.isclose(u, 2.5))[-1], np.flatnonzero(np.isclose(plain, 2.5))[-1]
+    assert S[i] == pytest.approx(P[j], rel=1e-12)
+    assert S[-1] == pytest.approx(ro.backbone_fn(1.01 * 4.0)(4.0), rel=1e-12)
+    # and the inner loop really left the branch (S differs there)
+    k = np.flatnonzero(np.isclose(u, 1.75))
+    assert abs(S[k[-1]] - P[np.flatnonzero(np.isclose(plain, 1.75))[-1]]) > 1.0
+
+
+def test_slider_in_series_is_rigid_plastic_with_the_bags_in_front():
+    """A slider of strength 20 N behind two linear bags of 400 N/mm each (a bilinear without
+    yield): the loop is a parallelogram with Q_d = 20 N, elastic stiffness 200 N/mm, K_d = 0."""
+    bag = iso.Bilinear(K_u=400.0, Q_d=1e9, K_d=0.0)
+    lanes = lanes_of(iso.Slider(bag=bag, mu_N=20.0, bags=2), amps=(2.0,), n=400)
+    u, S = lanes.last(0, lanes.u[0]), lanes.last(0, lanes.S[0])
+    p = design.properties(u, S)
+    assert p.Q_d == pytest.approx(20.0, rel=1e-6)
+    assert abs(p.K_d) < 0.05 and p.D_y == pytest.approx(0.1, rel=0.02)
+    assert np.abs(S).max() == pytest.approx(20.0, rel=1e-9)
+
+
+def test_bilinear_loop_properties_are_its_own():
+    """ASCE/AASHTO properties of a bilinear loop (vertices exact: sampled finely): k_eff = K_eq,
+    beta_eff = h_eq (to 1e-6), and Q_d, K_d, D_y those of the model."""
+    m = iso.Bilinear(K_u=500.0, Q_d=100.0, K_d=20.0)
+    lanes = lanes_of(m, amps=(2.0,), n=20000)
+    u, S = lanes.last(0, lanes.u[0]), lanes.last(0, lanes.S[0])
+    p = design.properties(u, S)
+    print(p)
+    assert p.k_eff == pytest.approx(p.K_eq, rel=1e-6) and p.beta_eff == pytest.approx(p.h_eq, rel=1e-6)
+    assert p.Q_d == pytest.approx(100.0, rel=1e-6)
+    assert p.K_d == pytest.approx(20.0, rel=1e-3) and p.D_y == pytest.approx(m.D_y, rel=1e-3)
+    assert p.k_eff == pytest.approx(m.Q_d / 2.0 + m.K_d, rel=1e-6)
+
+
+def test_recommend_prefers_the_model_within_tolerances():
+    lanes = lanes_of(iso.MasingRO(K0=520.0, S_y=300.0, r=4.0))
+    fits = iso.fit_all(lanes)
+    best, why = iso.recommend(fits)
+    print(why)
+    assert best.model.name.startswith("R-O") and "within" in why
+
+
+def test_lambdas_are_ratios_to_the_mean_of_the_cycles():
+    def props(k):
+        return design.Properties(D=1, k_eff=k, beta_eff=0.2, E_loop=1, Q_d=10, K_d=5, D_y=0.1, K_u=50,
+                                 K_eq=k, h_eq=0.2)
+    table = {(1, 1): props(110.0), (1, 2): props(100.0), (1, 3): props(90.0)}
+    slow = {(1, 3): props(81.0)}
+    lam = design.lambdas(table, slow, [{(1, 3): props(100.0)}])
+    assert lam[1]["k_eff"]["cycles"] == pytest.approx((0.9, 1.1))
+    assert lam[1]["k_eff"]["rate"] == pytest.approx((0.9, 1.0))
+    assert lam[1]["k_eff"]["fills"] == pytest.approx((90 / 95, 100 / 95))
+    assert lam[1]["k_eff"]["combined"] == pytest.approx((0.9 * 0.9 * 90 / 95, 1.1 * 1.0 * 100 / 95))
+    assert lam[1]["beta_eff"]["cycles"] == pytest.approx((1.0, 1.0))
+
+
+def test_properties_refuse_a_non_finite_loop():
+    with pytest.raises(ValueError, match="non-finite"):
+        design.properties([0, 1, 0, -1], [0, 1, np.nan, -1])
