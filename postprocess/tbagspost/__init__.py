@@ -43,11 +43,21 @@ def read_columns(path, columns, maker):
 
     import numpy as np
 
+    import io
+    import sys
+
     path = Path(path)
     if not path.is_file():
         fail("no %s (run %s first)" % (path, maker))
+    lines = path.read_text(errors="replace").splitlines()
+    data = [k for k, line in enumerate(lines) if line.strip() and not line.startswith("#")]
+    if len(data) > 1 and lines[data[-1]].count(",") < lines[data[0]].count(","):
+        print("tbagspost: %s: its last line is cut short (the run stopped while writing it): left "
+              "out" % path, file=sys.stderr)
+        del lines[data[-1]]
     try:
-        d = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True, comments="#"))
+        d = np.atleast_1d(np.genfromtxt(io.StringIO("\n".join(lines)), delimiter=",", names=True,
+                                        comments="#"))
     except ValueError as e:
         fail("%s is malformed or truncated: %s" % (path, str(e).splitlines()[0]))
     if d.dtype.names is None or not set(columns) <= set(d.dtype.names):

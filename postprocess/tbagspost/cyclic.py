@@ -9,6 +9,7 @@ first cycle starts on the virgin backbone, not on a Masing branch). Definitions:
 """
 import csv
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -23,15 +24,33 @@ LOG_SAND = re.compile(r"^SAND: (.*)$", re.M)
 LOG_DT = re.compile(r"^TIMESTEP:.*using\s+(\S+)\s+s", re.M)
 
 
+LOG_ROWS = re.compile(r"^# amplitude (\d+): u_a \S+ mm, \d+ cycles of (\d+) steps, rows of (\d+) steps", re.M)
+
+
 def read_csv(path):
     """cyclic.csv as a structured array, rows in time order without the rows a resumed run
-    superseded; stops clearly if missing, malformed or empty."""
+    superseded; stops clearly if missing, malformed or empty, or on a non-finite value (naming
+    the row; only the file's last row may be cut short, by an interrupted run, and is dropped)."""
     d = read_columns(path, COLUMNS, "inputs/in.cyclic")
-    d = d[~np.isnan(d["S_N"])]
+    finite = np.all([np.isfinite(d[c]) for c in COLUMNS], axis=0)
+    if len(d) and not finite[-1]:
+        d, finite = d[:-1], finite[:-1]                 # the row an interrupted run was writing
+    if not finite.all():
+        k = int(np.flatnonzero(~finite)[0])
+        cols = [c for c in COLUMNS if not np.isfinite(d[c][k])]
+        fail("%s: data row %d (time %g s, amplitude %g, cycle %g) has no finite %s" % (
+            path, k + 1, d["time_s"][k], d["amp"][k], d["cycle"][k], ", ".join(cols)))
     if len(d) < 2:
         fail("%s has fewer than two rows (truncated run?)" % path)
     # a resumed run restarts the time: keep a row only if every later row is later in time
     return d[~superseded(d["time_s"])]
+
+
+def rows_per_cycle(path):
+    """{amplitude: rows per cycle} from cyclic.csv's '# amplitude' lines (the deck's period over
+    its row length); {} for a file without them."""
+    text = Path(path).read_text(errors="replace")
+    return {int(a): int(period) // int(row) for a, period, row in LOG_ROWS.findall(text)}
 
 
 class CyclicRun:
@@ -40,6 +59,7 @@ class CyclicRun:
     def __init__(self, path):
         self.path = Path(path)
         self.csv = read_csv(self.path / "cyclic.csv")
+        self.row_counts = rows_per_cycle(self.path / "cyclic.csv")
         self._cycles = None
         self.log = ""
         for p in sorted(self.path.glob("log.cyclic")) + sorted(self.path.glob("screen.cyclic*")):
@@ -63,9 +83,13 @@ class CyclicRun:
         """The run in a table's first column."""
         return "%.0f" % self.fv_N
 
-    def rows_per_cycle(self):
-        """The deck's rows per cycle (the most common count of a cycle's rows)."""
-        _, counts = np.unique(self.keys(), axis=0, return_counts=True)
+    def rows_per_cycle(self, amp):
+        """The deck's rows per cycle at an amplitude: from cyclic.csv's '# amplitude' lines, else
+        the most common count of that amplitude's cycles."""
+        if amp in self.row_counts:
+            return self.row_counts[amp]
+        keys = self.keys()
+        _, counts = np.unique(keys[keys[:, 0] == amp], axis=0, return_counts=True)
         return int(np.bincount(counts).argmax())
 
     def keys(self):
@@ -73,15 +97,29 @@ class CyclicRun:
 
     def cycles(self):
         """The complete cycles, in order: list of (amp, cycle, rows) (found once; the figures
-        and tables ask for them many times)."""
+        and tables ask for them many times). Stops when a cycle is missing (each amplitude's
+        cycles are 1, 2, ...) or has other than the deck's rows per cycle, except the last
+        cycle of the file, which an interrupted run leaves short: it is left out, and said."""
         if self._cycles is None:
-            n = self.rows_per_cycle()
             keys = self.keys()
+            order = list(dict.fromkeys(map(tuple, keys)))
             self._cycles = []
-            for amp, cyc in dict.fromkeys(map(tuple, keys)):
+            for k, (amp, cyc) in enumerate(order):
                 rows = self.csv[(keys[:, 0] == amp) & (keys[:, 1] == cyc)]
+                expected = (order[k - 1][1] + 1) if k and order[k - 1][0] == amp else 1
+                if cyc != expected:
+                    fail("%s: amplitude %d has no cycle %d (rows missing from cyclic.csv?); its "
+                         "next cycle is %d" % (self.path / "cyclic.csv", amp, expected, cyc))
+                n = self.rows_per_cycle(amp)
                 if len(rows) == n:
                     self._cycles.append((amp, cyc, rows))
+                elif k == len(order) - 1 and len(rows) < n:
+                    print("tbagspost: %s: amplitude %d, cycle %d has %d of its %d rows (the run "
+                          "stopped in it): left out" % (self.path.name, amp, cyc, len(rows), n),
+                          file=sys.stderr)
+                else:
+                    fail("%s: amplitude %d, cycle %d has %d rows, the deck writes %d per cycle"
+                         % (self.path / "cyclic.csv", amp, cyc, len(rows), n))
         return self._cycles
 
     def conditions(self):
@@ -98,12 +136,21 @@ def table(run):
     w0 = run.csv["w_mm"][0]
     out = []
     for amp, cyc, rows in run.cycles():
-        m = hysteresis.measure(rows["u_mm"], rows["S_N"])
+        m = loop(run, amp, cyc, rows["u_mm"], rows["S_N"])
         out.append(dict(amp=amp, cycle=cyc, ua_nominal_mm=float(rows["ua_mm"][0]), ua_mm=m.u_a,
                         S_a_N=m.S_a, K_eq_N_per_mm=m.K_eq, W_d_J=m.W_d / 1000, h_eq=m.h_eq,
                         Fv_mean_N=float(rows["Fv_N"].mean()),
                         w_end_mm=float(rows["w_mm"][-1] - w0)))
     return out
+
+
+def loop(run, amp, cyc, u, S):
+    """hysteresis.measure of one cycle (one period of the drive); a loop it refuses stops with a
+    line naming the cycle."""
+    try:
+        return hysteresis.measure(u, S, one_period=True)
+    except ValueError as e:
+        fail("%s: amplitude %d, cycle %d: %s" % (run.path / "cyclic.csv", amp, cyc, e))
 
 
 def small_strain_stiffness(tab):
@@ -234,13 +281,12 @@ def curves_figure(runs, tables, fits):
 def cycle_position(run):
     """Each row's position in cycles from the start of cycling: the index of its (amp, cycle) in
     order of appearance plus its place within the cycle; and the (amp, cycle) keys in that order."""
-    n = run.rows_per_cycle()
     order, first = {}, {}
     x = np.zeros(len(run.csv))
     for k, key in enumerate(map(tuple, run.keys())):
         if key not in order:
             order[key], first[key] = len(order), k
-        x[k] = order[key] + (k - first[key] + 0.5) / n
+        x[k] = order[key] + (k - first[key] + 0.5) / run.rows_per_cycle(key[0])
     return x, list(order)
 
 

@@ -39,18 +39,60 @@ def loop_area(u, S):
     return float(0.5 * np.sum((S + np.roll(S, -1)) * du))
 
 
-def measure(u, S):
-    """Loop measures of the points (u, S) of one cycle."""
+# a turn of u counts as a reversal once u has come back by this part of the loop's range (the
+# film's slip, measured from particles, wiggles by less); a loop's end may be this far from its
+# start, or one step of its points (rows are means over an interval, so they never quite close)
+REVERSAL = 0.1
+# a loop with h_eq below this runs the wrong way round (it gives energy): S's sign or the time
+# order is reversed. Between it and 0: the scatter of a nearly elastic loop, reported as it is
+H_WRONG_WAY = -0.02
+
+
+def reversals(u, fraction=REVERSAL):
+    """The number of turns of u (each counted once u has come back by `fraction` of its range)."""
+    u = np.asarray(u, float)
+    tol = fraction * (u.max() - u.min())
+    turns, direction, extreme = 0, 0, u[0]
+    for x in u[1:]:
+        if direction == 0:
+            if abs(x - u[0]) > tol:
+                direction, extreme = (1 if x > u[0] else -1), x
+        elif (x - extreme) * direction > 0:
+            extreme = x                                  # further the same way
+        elif (extreme - x) * direction > tol:
+            turns, direction, extreme = turns + 1, -direction, x
+    return turns
+
+
+def measure(u, S, one_period=False):
+    """Loop measures of the points (u, S) of one closed cycle. Refuses (ValueError, saying why)
+    what is not one: non-finite points, no range of u, more than two turns of u (more than one
+    cycle), an end far from the start (part of a cycle), a loop that runs the wrong way round.
+    one_period: the points are one period of the drive (a cycle of in.cyclic), so a gap between
+    end and start is drift (a film's slip creeps), not part of a cycle: the gap is not checked."""
     u, S = np.asarray(u, float), np.asarray(S, float)
+    if not (np.isfinite(u).all() and np.isfinite(S).all()):
+        bad = int(np.flatnonzero(~(np.isfinite(u) & np.isfinite(S)))[0])
+        raise ValueError("point %d of %d is not finite (u %r, S %r)" % (bad + 1, len(u), u[bad], S[bad]))
     du, dS = u.max() - u.min(), S.max() - S.min()
     if du <= 0:
         raise ValueError("a loop needs points at different u")
+    turns = reversals(u)
+    if turns > 2:
+        raise ValueError("u turns %d times: more than one cycle (a loop turns twice)" % turns)
+    gap = abs(u[-1] - u[0])
+    if not one_period and gap > max(REVERSAL * du, 1.5 * np.max(np.abs(np.diff(u)))):
+        raise ValueError("the loop does not close: it ends %.3g from its start (%.0f %% of its range):"
+                         " part of a cycle" % (gap, 100 * gap / du))
     K = dS / du
     u_a = du / 2
     W_d = loop_area(u, S)
     W_e = K * u_a ** 2 / 2
-    return Loop(u_a=u_a, S_a=dS / 2, K_eq=K, W_d=W_d, W_e=W_e,
-                h_eq=W_d / (4 * np.pi * W_e) if W_e > 0 else float("nan"))
+    h = W_d / (4 * np.pi * W_e) if W_e > 0 else float("nan")
+    if h < H_WRONG_WAY:
+        raise ValueError("the loop runs the wrong way round (h_eq %.3f < 0: it gives energy): S's "
+                         "sign or the order of the points is reversed" % h)
+    return Loop(u_a=u_a, S_a=dS / 2, K_eq=K, W_d=W_d, W_e=W_e, h_eq=h)
 
 
 # ---- Ramberg-Osgood and Masing ------------------------------------------------------------------

@@ -126,7 +126,7 @@ def split_table(run):
             force = p["film%d_force" % f]
             t["film%d_force_N" % f] = amplitude(force)
             t["film%d_mobilised" % f] = amplitude(force) / t["Fv_mean_N"]
-            m = hysteresis.measure(p["film%d" % f], force)
+            m = cyclic.loop(run, amp, cyc, p["film%d" % f], force)
             t["film%d_h_eq" % f] = m.h_eq
             t["film%d_settle_mm" % f] = float(p["film%d_z" % f][-1] - p["film%d_z" % f][0])
         out.append(t)
