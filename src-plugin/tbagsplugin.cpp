@@ -7,6 +7,7 @@
 #include "bond_yarn.h"
 #include "fix_bond_history_tbags.h"
 #include "fix_neigh_history_tbags.h"
+#include "fix_table_time.h"
 #include "fix_wall_gran_servo.h"
 #include "pair_gran_hertz_rolling.h"
 
@@ -24,6 +25,11 @@ static Pair *pair_gran_hertz_rolling_creator(LAMMPS *lmp)
 static Fix *fix_wall_gran_servo_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixWallGranServo(lmp, argc, argv);
+}
+
+static Fix *fix_table_time_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixTableTime(lmp, argc, argv);
 }
 
 static Fix *fix_neigh_history_tbags_creator(LAMMPS *lmp, int argc, char **argv)
@@ -64,6 +70,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "wall/gran/servo";
   plugin.info = "tbags " TBAGS_VERSION ": rigid plate with force servo, gran/hertz/rolling contact law";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_gran_servo_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "table/time";
+  plugin.info = "tbags " TBAGS_VERSION ": a value tabulated against time (a displacement history)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_table_time_creator;
   (*register_plugin)(&plugin, lmp);
 
   // internal: the contact history store that pair gran/hertz/rolling creates

@@ -14,6 +14,7 @@ face - film); the slip fraction is the sum of the films' slip amplitudes over th
 """
 import csv
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +29,8 @@ def column_name(name):
     """stack.txt's LAMMPS names as ours: v_t -> t, c_top2 -> top2, f_film1[4] -> film1_x ..."""
     m = re.fullmatch(r"f_(film\d+)\[(\d+)\]", name)
     if m:
-        return m.group(1) + {"4": "_x", "14": "_Fabove", "17": "_Fbelow", "11": "_z"}[m.group(2)]
+        return m.group(1) + {"4": "_x", "14": "_Fabove", "17": "_Fbelow", "11": "_z",
+                             "16": "_Nabove"}[m.group(2)]
     return re.sub(r"^[vc]_", "", name)
 
 
@@ -99,6 +101,8 @@ class StackRun(cyclic.CyclicRun):
             out["film%d" % f] = mm("bot%d" % (f + 1)) - mm("top%d" % f)
             out["film%d_force" % f] = s["film%d_Fabove" % f]    # of the bag above on the film, N
             out["film%d_z" % f] = mm("film%d_z" % f)
+            if "film%d_Nabove" % f in s:      # the normal force through the film (N)
+                out["film%d_normal" % f] = -s["film%d_Nabove" % f]
         return out
 
 
@@ -109,7 +113,13 @@ def amplitude(x):
 def split_table(run):
     """Per complete cycle: the amplitude of every part (mm), the slip and bag fractions of the
     plate's amplitude, each film interface's force amplitude, its friction mobilised (force over
-    F_v) and its loop's K_eq and h_eq."""
+    the normal force through the film: F_v and the weight of the bags above, from stack.txt's
+    film z force; a run that did not record it (before 2026-12-05) gets F_v, and is told so) and
+    its loop's K_eq and h_eq."""
+    if "film1_Nabove" not in run.stack:
+        print("tbagspost: %s: stack.txt has no film normal force (a run before 2026-12-05): the "
+              "mobilised friction is over F_v alone, high by the weight of the bags above the film "
+              "(about 2 %% per demo bag at 216 N)" % run.name, file=sys.stderr)
     out = []
     for amp, cyc, rows in run.cycles():
         p = run.parts(rows)
@@ -117,7 +127,7 @@ def split_table(run):
         t = dict(amp=amp, cycle=cyc, ua_nominal_mm=float(rows["ua_mm"][0]), ua_mm=ua,
                  Fv_mean_N=float(rows["Fv_N"].mean()))
         for name in p:
-            if not name.endswith(("_force", "_z")):
+            if not name.endswith(("_force", "_z", "_normal")):
                 t[name + "_mm"] = amplitude(p[name])
         films = range(1, run.bags)
         t["slip_fraction"] = sum(t["film%d_mm" % f] for f in films) / ua
@@ -125,7 +135,10 @@ def split_table(run):
         for f in films:
             force = p["film%d_force" % f]
             t["film%d_force_N" % f] = amplitude(force)
-            t["film%d_mobilised" % f] = amplitude(force) / t["Fv_mean_N"]
+            normal = p.get("film%d_normal" % f)
+            t["film%d_normal_N" % f] = float(np.mean(normal)) if normal is not None else float("nan")
+            t["film%d_mobilised" % f] = amplitude(force) / (
+                t["film%d_normal_N" % f] if normal is not None else t["Fv_mean_N"])
             m = cyclic.loop(run, amp, cyc, p["film%d" % f], force)
             t["film%d_h_eq" % f] = m.h_eq
             t["film%d_settle_mm" % f] = float(p["film%d_z" % f][-1] - p["film%d_z" % f][0])
@@ -182,8 +195,11 @@ def report(run, tab):
     lines = ["", "## Stack: %d bags, %s (%s)" % (run.bags, mu, run.path.name), "",
              "Amplitudes (half peak-to-peak) of the parts of the top plate's displacement; slip "
              "fraction = the films' slip over the plate's amplitude; mobilised = the force through "
-             "the film over F_v; h_eq of the film interface's own loop (the force of the bag above on "
-             "the film against the slip across it).", "",
+             "the film over %s; h_eq of the film interface's own loop (the force of the bag above on "
+             "the film against the slip across it)." % (
+                 "the normal force through it (F_v and the weight above)" if "film1_Nabove" in run.stack
+                 else "F_v (this run did not record the film's normal force: high by the weight "
+                      "above the film)"), "",
              "| u_a (mm) | cycle | slip fraction | bag shear (mm) | film slip (mm) | plate slips bottom/top (mm) | "
              "mobilised | film h_eq |", "|---|---|---|---|---|---|---|---|"]
     for t in tab:

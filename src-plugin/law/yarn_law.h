@@ -22,6 +22,7 @@
 #ifndef TBAGS_LAW_YARN_LAW_H
 #define TBAGS_LAW_YARN_LAW_H
 
+#include "piecewise.h"
 #include "vec3.h"
 
 #include <algorithm>
@@ -38,15 +39,7 @@ struct Curve {
   std::vector<double> eps, val;
   double slope0() const { return (val[1] - val[0]) / (eps[1] - eps[0]); }
   // linear interpolation; beyond the last point the last segment is extended
-  double at(double e) const
-  {
-    if (e <= eps.front()) return val.front();
-    const size_t n = eps.size();
-    size_t k = std::upper_bound(eps.begin(), eps.end(), e) - eps.begin();
-    if (k >= n) k = n - 1;
-    const double t = (e - eps[k - 1]) / (eps[k] - eps[k - 1]);
-    return val[k - 1] + t * (val[k] - val[k - 1]);
-  }
+  double at(double e) const { return piecewise_linear(eps, val, e); }
   // integral of the curve from 0 to e (for the bond potential energy)
   double integral(double e) const
   {
