@@ -22,6 +22,7 @@ Modules, one job each:
             series) run along a displacement history, their fits, the recommended one
   design    a designer's properties of a loop (ASCE 7-22 / AASHTO) and property modification factors
   isolator_report  the isolator section of a cyclic report (models, properties, factors)
+  history   a displacement history run (in.cyclic -var history): the DEM's S against each model's
   stack     a stack of bags on films (in.cyclic -var bags N): displacement split, slip fraction
   vtkout    ParaView series (.vtu particles, .vtp contacts and bonds, .pvd indexes)
   cli       the command line (python3 -m tbagspost --help)

@@ -7,8 +7,8 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import (cyclic, fail, isolator_report, loadpath, network, realizations, shape, shear, stack,
-                       style, triax, vtkout)
+from tbagspost import (cyclic, fail, history, isolator_report, loadpath, network, realizations, shape,
+                       shear, stack, style, triax, vtkout)
 from tbagspost.run import Run
 
 DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
@@ -43,7 +43,9 @@ R-O/Phillips-Hashash, bilinear and Bouc-Wen models fitted per load with their er
 recommended one, the designer's properties (k_eff, beta_eff, Q_d, K_d, D_y) per amplitude and
 their property modification factors (isolator_models.csv, design_properties.csv); a stack gets a
 friction slider in series with its bags' model. Runs of the same F_v are fills of one load;
---slow RUN_DIR (a run of a load at half the speed) adds the rate factors.
+--slow RUN_DIR (a run of a load at half the speed) adds the rate factors; --history RUN_DIR (a run
+of in.cyclic -var history FILE at a load among the RUN_DIRs) compares the DEM's S along that
+history with each model's (history_check.csv, history-<run>.png).
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.
 Shape and network figures are made at the dump nearest to each --u (default: the last dump).
 With --realizations, the RUN_DIRs are realizations of one test (fills of different seeds; runs of
@@ -70,6 +72,9 @@ def parse(argv=None):
     ap.add_argument("--slow", action="append", default=[], metavar="RUN_DIR",
                     help="a cyclic run at half the speed of a load among the RUN_DIRs (repeatable): "
                          "the rate's property modification factors")
+    ap.add_argument("--history", action="append", default=[], metavar="RUN_DIR",
+                    help="a displacement history run (in.cyclic -var history) of a load among the "
+                         "RUN_DIRs (repeatable): each model's S along it against the DEM's")
     ap.add_argument("--format", default="png", help="figure formats, e.g. png,pdf (default png)")
     ap.add_argument("--dpi", type=float, default=None, help="resolution of raster figures (default 200)")
     args = ap.parse_args(argv)
@@ -200,7 +205,9 @@ def main(argv=None):
                 text += section
                 with open(out / "report.md", "a") as fh:
                     fh.write(section)
-        more, section = isolator_report.write(cyclic_runs, out, [cyclic.CyclicRun(p) for p in args.slow])
+        more, section = isolator_report.write(
+            cyclic_runs, out, [cyclic.CyclicRun(p) for p in args.slow],
+            [history.HistoryRun(p) for p in args.history], args.format, args.dpi)
         written += more
         text += section
         with open(out / "report.md", "a") as fh:

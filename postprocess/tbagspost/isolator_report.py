@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import design, isolator
+from tbagspost import design, history, isolator, style
 
 MODEL_KEYS = ("R-O, Masing", "R-O, Phillips-Hashash", "bilinear", "Bouc-Wen")
 
@@ -69,9 +69,10 @@ def models_section(name, fits, best, why):
     return lines
 
 
-def write(runs, out, slow=None):
+def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
     """The section for cyclic.CyclicRun / stack.StackRun runs; slow: {F_v-matching run} runs at
-    half speed. Returns (written paths, Markdown text)."""
+    half speed; histories: history.HistoryRun runs, compared with the models of their load.
+    Returns (written paths, Markdown text)."""
     from tbagspost import stack as stackmod
 
     out = Path(out)
@@ -87,12 +88,13 @@ def write(runs, out, slow=None):
             "before the last, then the last, which is compared). Recommended: within 10 % on K_eq "
             "and 0.03 on h_eq at every amplitude with the smallest rms error of S, else the smallest "
             "rms error."]
-    model_rows, prop_rows, bag_models = [], [], {}
+    model_rows, prop_rows, bag_models, fits_of, stack_models = [], [], {}, {}, {}
     for run, fills in group_loads(singles):
         lanes = isolator.lanes_of(run.cycles())
         fits = isolator.fit_all(lanes)
         best, why = isolator.recommend(fits)
         bag_models[run.fv_N] = best.model
+        fits_of[run.fv_N] = fits
         text += models_section("%s (%s)" % (run.label.replace("$", ""), run.name), fits, best, why)
         for f in fits:
             row = dict(run=run.name, Fv_N=run.fv_N, model=f.name, recommended=f is best,
@@ -125,6 +127,7 @@ def write(runs, out, slow=None):
                  "cycle at the largest amplitude) in series with %d bags of the single bag's "
                  "recommended model (%s) at the same load; no parameter fitted to the stack." % (
                      mu_N, run.bags, bag[1].name)]
+        stack_models[run.fv_N] = [(fit.name, model), (bags_only.name, bags_only.model)]
         best, why = isolator.recommend([fit, bags_only])
         text += [""] + models_section("stack model", [fit, bags_only], best, why)[3:]
         model_rows.append(dict(run=run.name, Fv_N=run.fv_N, model="slider + %d bags (%s)" % (
@@ -134,7 +137,25 @@ def write(runs, out, slow=None):
         lam = design.lambdas(table)
         prop_rows += design.property_rows(run.name, run.fv_N, table, lam)
         text += properties_section(run, table, lam, None, [])
-    written = []
+    written, check_rows = [], []
+    for h in histories or []:
+        pool = stack_models if h.stack else {fv: [(f.name, f.model) for f in fits]
+                                              for fv, fits in fits_of.items()}
+        fv, models = min(pool.items(), key=lambda kv: abs(kv[0] - h.fv_N), default=(None, None))
+        what = "a stack" if h.stack else "one bag"
+        if models is None or abs(fv - h.fv_N) > 0.01 * h.fv_N:
+            text += ["", "### History %s (F_v = %.0f N)" % (h.name, h.fv_N), "",
+                     "No %s cyclic run at this load among the runs: its models are fitted there "
+                     "(give one beside the history: ./tbags plot CYCLIC_RUN ... --history %s)." % (
+                         "stack and single-bag" if h.stack else "single-bag", h.path)]
+            continue
+        rows = history.compare(h, models)
+        check_rows += rows
+        text += history.section(h, rows, what)
+        written += style.save(history.figure(h, rows), out / ("history-%s" % h.name), formats, dpi)
+    if check_rows:
+        history.write_csv(out / "history_check.csv", check_rows)
+        written.append(out / "history_check.csv")
     if model_rows:
         design.write_csv(out / "isolator_models.csv", model_rows)
         written.append(out / "isolator_models.csv")

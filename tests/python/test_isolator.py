@@ -132,3 +132,75 @@ def test_lambdas_are_ratios_to_the_mean_of_the_cycles():
 def test_properties_refuse_a_non_finite_loop():
     with pytest.raises(ValueError, match="non-finite"):
         design.properties([0, 1, 0, -1], [0, 1, np.nan, -1])
+
+
+# ---- a history the fit never saw (tbagspost/history.py) ---------------------------------------
+def irregular_history():
+    """inputs/histories/make_irregular.py's history at 2 ms rows (u mm, t s)."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "make_irregular", Path(__file__).resolve().parents[2] / "inputs" / "histories" / "make_irregular.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    t, u = mod.history()
+    return t[1::2], u[1::2]
+
+
+def write_history(path, model, fv=318.0):
+    """history.csv of `model` driven along the irregular history (from rest at u = 0)."""
+    t, u = irregular_history()
+    S = model.simulate(np.r_[0.0, u])[1:]
+    path.mkdir(parents=True, exist_ok=True)
+    with open(path / "history.csv", "w") as fh:
+        fh.write("time_s,th_s,chunk,u_mm,w_mm,S_N,Fv_N\n# rows\n")
+        for k in range(len(t)):
+            fh.write("%.7f,%.7f,1,%.9f,0,%.9f,%g\n" % (10 + t[k], t[k], u[k], S[k], fv))
+    return path
+
+
+def test_work_of_a_coulomb_loop_is_four_F_times_the_amplitude():
+    from tbagspost import history
+    u = np.r_[np.linspace(0, 2, 50), np.linspace(2, -2, 100)[1:], np.linspace(-2, 0, 50)[1:]]
+    S = np.where(np.gradient(u) >= 0, 30.0, -30.0)
+    S[0] = 0.0                              # at rest before the first row
+    assert history.work(u[1:], S[1:]) == pytest.approx(4 * 30.0 * 2, rel=0.02)
+
+
+def test_history_check_is_exact_for_the_model_that_made_it(tmp_path):
+    from tbagspost import history
+    true = iso.MasingRO(K0=520.0, S_y=300.0, r=4.0)
+    run = history.HistoryRun(write_history(tmp_path / "h", true))
+    rows = history.compare(run, [("same", true), ("bilinear", iso.Bilinear(K_u=500.0, Q_d=150.0, K_d=40.0))])
+    dem, same, bil = rows
+    print([(r["model"], r["rms_of_peak"], r["W_ratio"]) for r in rows])
+    assert dem["W_mJ"] > 0 and same["rms_of_peak"] < 1e-9 and same["W_ratio"] == pytest.approx(1, abs=1e-9)
+    assert bil["rms_of_peak"] > 0.05 and abs(bil["W_ratio"] - 1) > 0.05
+    # the figure and the section
+    assert "| same | 0.0 % |" in "\n".join(history.section(run, rows, "one bag"))
+    history.figure(run, rows)
+
+
+def test_history_on_the_command_line(tmp_path, capsys):
+    """Cyclic runs of known Masing loops (test_cyclic_post) and a history of the same model: the
+    R-O/Masing fit predicts the history within 2 % of its peak; history_check.csv is written."""
+    from test_cyclic_post import TRUE, write_run
+    from tbagspost import cli, history
+    run = write_run(tmp_path / "F5500")
+    h = write_history(tmp_path / "H5500", iso.MasingRO(K0=TRUE.K0, S_y=TRUE.S_y, r=TRUE.r))
+    assert cli.main([str(run), "--history", str(h), "-o", str(tmp_path / "out")]) == 0
+    rows = list(csv_rows(tmp_path / "out" / "history_check.csv"))
+    by = {r["model"]: r for r in rows}
+    assert float(by["R-O, Masing"]["rms_of_peak"]) < 0.02
+    assert (tmp_path / "out" / "history-H5500.png").is_file()
+    assert "### History H5500: one bag" in (tmp_path / "out" / "isolator.md").read_text()
+    # a history of a load with no cyclic run says so
+    h2 = write_history(tmp_path / "H1960", iso.MasingRO(K0=TRUE.K0, S_y=TRUE.S_y, r=TRUE.r), fv=113.0)
+    assert cli.main([str(run), "--history", str(h2), "-o", str(tmp_path / "out2")]) == 0
+    assert "No single-bag cyclic run at this load" in (tmp_path / "out2" / "isolator.md").read_text()
+    assert history  # imported for the module's presence
+
+
+def csv_rows(path):
+    import csv
+    with open(path) as fh:
+        yield from csv.DictReader(fh)

@@ -1,0 +1,108 @@
+"""A displacement history run (inputs/in.cyclic -var history FILE): the DEM's shear force along an
+irregular u(t) that no model was fitted to, against each isolator model stepped through the same
+u(t): the test of a model a designer would use.
+
+history.csv (in.cyclic's history rows: means over each row's steps) gives time_s, th_s (the
+history's time), u_mm, S_N, Fv_N. Per model: the rms of S_model - S_DEM over the rows as a part of
+the DEM's largest |S|, and the work done on the isolator over the history, W = integral of S du
+(mJ from N and mm; u starts and ends at 0, so W is the energy dissipated but for the elastic
+energy left at the end), DEM and model.
+"""
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from tbagspost import fail, read_columns, style, superseded
+
+COLUMNS = ("time_s", "th_s", "chunk", "u_mm", "S_N", "Fv_N")
+
+
+class HistoryRun:
+    """A history run directory: its rows (a resumed run's rewritten rows dropped)."""
+
+    def __init__(self, path):
+        self.path = Path(path)
+        d = read_columns(self.path / "history.csv", COLUMNS, "inputs/in.cyclic -var history FILE")
+        for c in COLUMNS:
+            bad = np.flatnonzero(~np.isfinite(d[c]))
+            if len(bad):
+                fail("%s: data row %d has no finite %s" % (self.path / "history.csv", bad[0] + 1, c))
+        self.csv = d[~superseded(d["time_s"])]
+        if len(self.csv) < 10:
+            fail("%s has %d rows: too few for a history" % (self.path / "history.csv", len(self.csv)))
+        self.stack = (self.path / "stack.txt").exists()
+
+    @property
+    def name(self):
+        return self.path.resolve().name
+
+    @property
+    def fv_N(self):
+        return float(np.median(self.csv["Fv_N"]))
+
+
+def work(u, S):
+    """Integral of S du along the rows (trapezoid rule), from u = 0 at rest before the first row."""
+    u, S = np.r_[0.0, u], np.r_[0.0, S]
+    return float(np.sum(0.5 * (S[1:] + S[:-1]) * np.diff(u)))
+
+
+def compare(run, models):
+    """models: [(name, model)]; returns one dict per model (and the DEM's own row first)."""
+    u, S = run.csv["u_mm"], run.csv["S_N"]
+    peak = float(np.max(np.abs(S)))
+    W = work(u, S)
+    rows = [dict(run=run.name, Fv_N=run.fv_N, model="DEM", rms_of_peak=0.0, W_mJ=W, W_ratio=1.0,
+                 S_peak_N=peak)]
+    for name, model in models:
+        Sm = model.simulate(np.r_[0.0, u])[1:]
+        rows.append(dict(run=run.name, Fv_N=run.fv_N, model=name,
+                         rms_of_peak=float(np.sqrt(np.mean((Sm - S) ** 2)) / peak),
+                         W_mJ=work(u, Sm), W_ratio=work(u, Sm) / W, S_peak_N=float(np.max(np.abs(Sm))),
+                         S=Sm))
+    return rows
+
+
+def figure(run, rows):
+    """S against the history's time and against u: the DEM and each model."""
+    fig, (a, b) = style.figure(1, 2, width=7.0, height=2.8)
+    t, u, S = run.csv["th_s"], run.csv["u_mm"], run.csv["S_N"]
+    a.plot(t, S, color="k", lw=1.2, label="DEM")
+    b.plot(u, S, color="k", lw=1.0, label="DEM")
+    for k, r in enumerate(rows[1:]):
+        a.plot(t, r["S"], lw=0.7, color="C%d" % k, label=r["model"])
+        b.plot(u, r["S"], lw=0.6, color="C%d" % k)
+    a.set_xlabel("history time (s)")
+    a.set_ylabel("$S$ (N)")
+    b.set_xlabel("$u$ (mm)")
+    b.set_ylabel("$S$ (N)")
+    a.legend(frameon=False, fontsize=6)
+    style.panel_label(a, "(a)")
+    style.panel_label(b, "(b)")
+    fig.tight_layout()
+    return fig
+
+
+def section(run, rows, what):
+    lines = ["", "### History %s: %s (%s)" % (run.name, what, "F_v = %.0f N" % run.fv_N), "",
+             "%d rows of the history (%.3g s, |u| up to %.2f mm); the models were fitted to the "
+             "cyclic runs only. rms: of S_model - S_DEM over the rows, as a part of the DEM's "
+             "largest |S| (%.1f N); W: the work integral of S du over the history (energy "
+             "dissipated, but for the elastic energy left at the end)." % (
+                 len(run.csv), run.csv["th_s"][-1], np.max(np.abs(run.csv["u_mm"])), rows[0]["S_peak_N"]),
+             "", "| model | rms of S (of the peak) | W (mJ) | W model / W DEM | largest abs S (N) |",
+             "|---|---|---|---|---|"]
+    for r in rows:
+        lines.append("| %s | %.1f %% | %.1f | %.2f | %.1f |" % (
+            r["model"], 100 * r["rms_of_peak"], r["W_mJ"], r["W_ratio"], r["S_peak_N"]))
+    return lines
+
+
+def write_csv(path, rows):
+    keys = ["run", "Fv_N", "model", "rms_of_peak", "W_mJ", "W_ratio", "S_peak_N"]
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
