@@ -13,7 +13,7 @@ EXAMPLES = sorted(p for p in (lmprun.ROOT / "examples").glob("*/in.*") if p.pare
 
 def test_every_style_has_an_example():
     styles = {p.parent.name for p in EXAMPLES}
-    assert {"pair_gran_hertz_rolling", "bond_bpm_yarn", "fix_wall_gran_servo"} <= styles
+    assert {"pair_gran_hertz_rolling", "bond_bpm_yarn", "fix_wall_gran_servo", "fix_table_time"} <= styles
 
 
 @pytest.mark.parametrize("deck", EXAMPLES, ids=[p.name for p in EXAMPLES])
@@ -23,6 +23,9 @@ def test_example_runs(tmp_path, deck):
     # shipped at a step they accept: the plates' chatter meter stays quiet (before its coherent
     # mean, grains landing read as chatter, and a film was judged by its near-zero net force)
     assert "reduce the timestep" not in res.output, res.output[-800:]
+    if deck.name == "in.fix_table_time":     # the plate ends where the table ends, exactly
+        m = re.search(r"TABLE/TIME EXAMPLE: plate u (\S+) mm", res.output)
+        assert m and abs(float(m.group(1))) < 1e-9, res.output[-500:]
     if deck.name.endswith("_film"):
         m = re.search(r"FILM EXAMPLE: S/F (\S+) \(film friction (\S+)\), film moved (\S+) um", res.output)
         assert m, res.output[-500:]
