@@ -53,7 +53,20 @@ def rows_per_cycle(path):
     return {int(a): int(period) // int(row) for a, period, row in LOG_ROWS.findall(text)}
 
 
-class CyclicRun:
+class RowsRun:
+    """What a run of rows under a held F_v has (cyclic and history runs): its folder's name and
+    its F_v (the median of the rows')."""
+
+    @property
+    def name(self):
+        return self.path.resolve().name
+
+    @property
+    def fv_N(self):
+        return float(np.median(self.csv["Fv_N"]))
+
+
+class CyclicRun(RowsRun):
     """A cyclic run directory: its rows, cycles and conditions."""
 
     def __init__(self, path):
@@ -65,14 +78,6 @@ class CyclicRun:
         for p in sorted(self.path.glob("log.cyclic")) + sorted(self.path.glob("screen.cyclic*")):
             self.log = p.read_text(errors="replace")
             break
-
-    @property
-    def name(self):
-        return self.path.resolve().name
-
-    @property
-    def fv_N(self):
-        return float(np.median(self.csv["Fv_N"]))
 
     @property
     def label(self):

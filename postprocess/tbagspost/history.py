@@ -14,11 +14,12 @@ from pathlib import Path
 import numpy as np
 
 from tbagspost import fail, read_columns, style, superseded
+from tbagspost.cyclic import RowsRun
 
 COLUMNS = ("time_s", "th_s", "chunk", "u_mm", "S_N", "Fv_N")
 
 
-class HistoryRun:
+class HistoryRun(RowsRun):
     """A history run directory: its rows (a resumed run's rewritten rows dropped)."""
 
     def __init__(self, path):
@@ -32,14 +33,6 @@ class HistoryRun:
         if len(self.csv) < 10:
             fail("%s has %d rows: too few for a history" % (self.path / "history.csv", len(self.csv)))
         self.stack = (self.path / "stack.txt").exists()
-
-    @property
-    def name(self):
-        return self.path.resolve().name
-
-    @property
-    def fv_N(self):
-        return float(np.median(self.csv["Fv_N"]))
 
 
 def work(u, S):
