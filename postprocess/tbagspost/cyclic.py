@@ -53,9 +53,25 @@ def rows_per_cycle(path):
     return {int(a): int(period) // int(row) for a, period, row in LOG_ROWS.findall(text)}
 
 
+LOG_FABRIC = re.compile(r"^FABRIC: (\w+):", re.M)
+
+
 class RowsRun:
-    """What a run of rows under a held F_v has (cyclic and history runs): its folder's name and
-    its F_v (the median of the rows')."""
+    """What a run of rows under a held F_v has (cyclic and history runs): its folder's name, its
+    F_v (the median of the rows'), its log and the bag's fabric."""
+
+    def read_log(self):
+        self.log = ""
+        for p in sorted(self.path.glob("log.cyclic")) + sorted(self.path.glob("screen.cyclic*")):
+            self.log = p.read_text(errors="replace")
+            break
+
+    @property
+    def fabric(self):
+        """The fabric its log names (inputs/fabric.lmp); runs from before the fabric choice
+        (no FABRIC line) had the solid bond."""
+        m = LOG_FABRIC.search(self.log)
+        return m.group(1) if m else "solid"
 
     @property
     def name(self):
@@ -74,10 +90,7 @@ class CyclicRun(RowsRun):
         self.csv = read_csv(self.path / "cyclic.csv")
         self.row_counts = rows_per_cycle(self.path / "cyclic.csv")
         self._cycles = None
-        self.log = ""
-        for p in sorted(self.path.glob("log.cyclic")) + sorted(self.path.glob("screen.cyclic*")):
-            self.log = p.read_text(errors="replace")
-            break
+        self.read_log()
 
     @property
     def label(self):

@@ -143,12 +143,12 @@ def write_csv(path, rows):
             w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
 
 
-def property_rows(name, fv, table, lam):
+def property_rows(name, fv, table, lam, fabric="solid"):
     """CSV rows: per amplitude's last cycle, its properties and each lambda."""
     rows = []
     for amp in sorted(lam):
         last = table[(amp, max(c for a, c in table if a == amp))]
-        row = dict(run=name, Fv_N=fv, amp=amp)
+        row = dict(run=name, Fv_N=fv, fabric=fabric, amp=amp)
         row.update({k: float(v) for k, v in asdict(last).items()})
         for p, src in lam[amp].items():
             for s, (lo, hi) in src.items():

@@ -33,6 +33,7 @@ class HistoryRun(RowsRun):
         if len(self.csv) < 10:
             fail("%s has %d rows: too few for a history" % (self.path / "history.csv", len(self.csv)))
         self.stack = (self.path / "stack.txt").exists()
+        self.read_log()
 
 
 def work(u, S):

@@ -16,7 +16,21 @@ MODEL_KEYS = ("R-O, Masing", "R-O, Phillips-Hashash", "bilinear", "Bouc-Wen")
 
 
 def same_load(a, b):
-    return abs(a.fv_N - b.fv_N) <= 0.01 * max(abs(a.fv_N), 1e-9)
+    """The same load (F_v within 1 %) on the same fabric."""
+    return abs(a.fv_N - b.fv_N) <= 0.01 * max(abs(a.fv_N), 1e-9) and a.fabric == b.fabric
+
+
+def match(pool, run):
+    """pool[(fabric, F_v)] for the run's fabric and load (F_v within 1 %), or None."""
+    for (fabric, fv), value in pool.items():
+        if fabric == run.fabric and abs(fv - run.fv_N) <= 0.01 * max(abs(run.fv_N), 1e-9):
+            return value
+    return None
+
+
+def title(run, several_fabrics):
+    return "%s%s (%s)" % (run.label.replace("$", ""), ", fabric %s" % run.fabric if several_fabrics
+                          else "", run.name)
 
 
 def group_loads(runs):
@@ -79,6 +93,7 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
     slow = list(slow or [])
     singles = [r for r in runs if not isinstance(r, stackmod.StackRun)]
     stacks = [r for r in runs if isinstance(r, stackmod.StackRun)]
+    several = len({r.fabric for r in runs}) > 1
     text = ["", "## Isolator models and design properties", "",
             "Models (tbagspost/isolator.py): R-O with Masing's rules (the fit above); R-O with "
             "Phillips and Hashash's (2009) damping reduction F(u_m) = p1 - p2 (1 - K_sec/K_0)^p3 "
@@ -88,16 +103,17 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
             "before the last, then the last, which is compared). Recommended: within 10 % on K_eq "
             "and 0.03 on h_eq at every amplitude with the smallest rms error of S, else the smallest "
             "rms error."]
-    model_rows, prop_rows, bag_models, fits_of, stack_models = [], [], {}, {}, {}
+    model_rows, prop_rows, bag_models, fits_of, stack_models, tables = [], [], {}, {}, {}, {}
     for run, fills in group_loads(singles):
         lanes = isolator.lanes_of(run.cycles())
         fits = isolator.fit_all(lanes)
         best, why = isolator.recommend(fits)
-        bag_models[run.fv_N] = best.model
-        fits_of[run.fv_N] = fits
-        text += models_section("%s (%s)" % (run.label.replace("$", ""), run.name), fits, best, why)
+        bag_models[(run.fabric, run.fv_N)] = best.model
+        fits_of[(run.fabric, run.fv_N)] = fits
+        text += models_section(title(run, several), fits, best, why)
         for f in fits:
-            row = dict(run=run.name, Fv_N=run.fv_N, model=f.name, recommended=f is best,
+            row = dict(run=run.name, Fv_N=run.fv_N, fabric=run.fabric, model=f.name,
+                       recommended=f is best,
                        rms_S=f.rms_S, worst_K_rel=f.worst_K, worst_h_abs=f.worst_h)
             row.update({k: float(v) for k, v in f.model.params().items()})
             row.update({"%s_sd" % k: float(v) for k, v in f.sd.items()})
@@ -106,46 +122,49 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
         s = next((r for r in slow if same_load(r, run)), None)
         lam = design.lambdas(table, design.run_table(s) if s else None,
                              [design.run_table(f) for f in fills])
-        prop_rows += design.property_rows(run.name, run.fv_N, table, lam)
+        prop_rows += design.property_rows(run.name, run.fv_N, table, lam, run.fabric)
         text += properties_section(run, table, lam, s, fills)
+        tables[(run.fabric, run.fv_N)] = table
+    text += fabric_section(tables)
     for run in stacks:
-        bag = min(bag_models.items(), key=lambda kv: abs(kv[0] - run.fv_N), default=(None, None))
-        if bag[1] is None or abs(bag[0] - run.fv_N) > 0.01 * run.fv_N:
-            text += ["", "### %s" % run.label.replace("$", ""), "",
+        bag = match(bag_models, run)
+        if bag is None:
+            text += ["", "### %s" % title(run, several), "",
                      "No single bag at this load among the runs: the slider + bags model needs one "
                      "(give a single bag's cyclic run at this load beside the stack: ./tbags plot "
                      "BAG_RUN STACK_RUN)."]
             continue
         mu_N = film_strength(run)
-        model = isolator.Slider(bag=bag[1], mu_N=mu_N, bags=run.bags)
+        model = isolator.Slider(bag=bag, mu_N=mu_N, bags=run.bags)
         lanes = isolator.lanes_of(run.cycles())
         fit = isolator.evaluate(model, lanes)
-        bags_only = isolator.evaluate(isolator.Slider(bag=bag[1], mu_N=np.inf, bags=run.bags), lanes,
+        bags_only = isolator.evaluate(isolator.Slider(bag=bag, mu_N=np.inf, bags=run.bags), lanes,
                                       label="%d bags, no slip" % run.bags)
-        text += ["", "### %s (%s)" % (run.label.replace("$", ""), run.name), "",
+        text += ["", "### %s" % title(run, several), "",
                  "A friction slider of strength mu N = %.1f N (the film's largest force in the last "
                  "cycle at the largest amplitude) in series with %d bags of the single bag's "
                  "recommended model (%s) at the same load; no parameter fitted to the stack." % (
-                     mu_N, run.bags, bag[1].name)]
-        stack_models[run.fv_N] = [(fit.name, model), (bags_only.name, bags_only.model)]
+                     mu_N, run.bags, bag.name)]
+        stack_models[(run.fabric, run.fv_N)] = [(fit.name, model), (bags_only.name, bags_only.model)]
         best, why = isolator.recommend([fit, bags_only])
         text += [""] + models_section("stack model", [fit, bags_only], best, why)[3:]
-        model_rows.append(dict(run=run.name, Fv_N=run.fv_N, model="slider + %d bags (%s)" % (
-            run.bags, bag[1].name), recommended=True, rms_S=fit.rms_S, worst_K_rel=fit.worst_K,
+        model_rows.append(dict(run=run.name, Fv_N=run.fv_N, fabric=run.fabric,
+                               model="slider + %d bags (%s)" % (run.bags, bag.name), recommended=True, rms_S=fit.rms_S, worst_K_rel=fit.worst_K,
             worst_h_abs=fit.worst_h, mu_N=mu_N))
         table = design.run_table(run)
         lam = design.lambdas(table)
-        prop_rows += design.property_rows(run.name, run.fv_N, table, lam)
+        prop_rows += design.property_rows(run.name, run.fv_N, table, lam, run.fabric)
         text += properties_section(run, table, lam, None, [])
     written, check_rows = [], []
     for h in histories or []:
-        pool = stack_models if h.stack else {fv: [(f.name, f.model) for f in fits]
-                                              for fv, fits in fits_of.items()}
-        fv, models = min(pool.items(), key=lambda kv: abs(kv[0] - h.fv_N), default=(None, None))
-        what = "a stack" if h.stack else "one bag"
-        if models is None or abs(fv - h.fv_N) > 0.01 * h.fv_N:
-            text += ["", "### History %s (F_v = %.0f N)" % (h.name, h.fv_N), "",
-                     "No %s cyclic run at this load among the runs: its models are fitted there "
+        pool = stack_models if h.stack else {key: [(f.name, f.model) for f in fits]
+                                              for key, fits in fits_of.items()}
+        models = match(pool, h)
+        what = ("a stack" if h.stack else "one bag") + (", fabric %s" % h.fabric if several else "")
+        if models is None:
+            text += ["", "### History %s (F_v = %.0f N, fabric %s)" % (h.name, h.fv_N, h.fabric), "",
+                     "No %s cyclic run of this fabric at this load among the runs: its models are "
+                     "fitted there "
                      "(give one beside the history: ./tbags plot CYCLIC_RUN ... --history %s)." % (
                          "stack and single-bag" if h.stack else "single-bag", h.path)]
             continue
@@ -191,4 +210,28 @@ def properties_section(run, table, lam, slow, fills):
         lines += ["", "Not measured for this load: %s (%s)." % (", ".join(missing), "; ".join(
             {"rate": "a run at half the speed: tbagspost --slow RUN_DIR",
              "fills": "other fills of the same load among the runs"}[m] for m in missing))]
+    return lines
+
+
+def fabric_section(tables):
+    """The fabric's effect beside the lambda factors: per load run on the solid bond and another
+    fabric, each property of the other fabric over the solid bond's at the same amplitude (last
+    cycles), min - max over the amplitudes."""
+    lines = []
+    for (fabric, fv), table in tables.items():
+        base = next((t for (f, v), t in tables.items() if f == "solid" and abs(v - fv) <= 0.01 * fv), None)
+        if fabric == "solid" or base is None:
+            continue
+        last = lambda t, a: t[(a, max(c for b, c in t if b == a))]  # noqa: E731
+        amps = sorted({a for a, _ in table} & {a for a, _ in base})
+        if not amps:
+            continue
+        lines += ["", "### The fabric's effect at F_v = %.0f N: %s over solid" % (fv, fabric), "",
+                  "Each property of the %s fabric's last cycle over the solid bond's at the same "
+                  "amplitude (min - max over the amplitudes): the model's uncertainty about the bag "
+                  "(the fabric a real bag has lies between them or beyond), beside the lambda "
+                  "factors above." % fabric, "", "| property | %s / solid |" % fabric, "|---|---|"]
+        for p in design.PROPS:
+            r = [getattr(last(table, a), p) / getattr(last(base, a), p) for a in amps]
+            lines.append("| %s | %.2f - %.2f |" % (p, min(r), max(r)))
     return lines

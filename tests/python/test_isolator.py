@@ -196,7 +196,7 @@ def test_history_on_the_command_line(tmp_path, capsys):
     # a history of a load with no cyclic run says so
     h2 = write_history(tmp_path / "H1960", iso.MasingRO(K0=TRUE.K0, S_y=TRUE.S_y, r=TRUE.r), fv=113.0)
     assert cli.main([str(run), "--history", str(h2), "-o", str(tmp_path / "out2")]) == 0
-    assert "No single-bag cyclic run at this load" in (tmp_path / "out2" / "isolator.md").read_text()
+    assert "No single-bag cyclic run of this fabric at this load" in (tmp_path / "out2" / "isolator.md").read_text()
     assert history  # imported for the module's presence
 
 
@@ -204,3 +204,28 @@ def csv_rows(path):
     import csv
     with open(path) as fh:
         yield from csv.DictReader(fh)
+
+
+def test_a_second_fabric_is_its_own_load_and_its_effect_is_reported(tmp_path):
+    """Two runs of one load, the second on the woven fabric with S halved: not fills of one load
+    but two fabrics; the report gives woven / solid = 0.5 for k_eff and Q_d, 1 for beta_eff."""
+    from test_cyclic_post import write_run
+    from tbagspost import cli
+    a = write_run(tmp_path / "solid" / "F5500")
+    b = write_run(tmp_path / "woven" / "F5500")
+    with open(b / "log.cyclic", "a") as fh:
+        fh.write("FABRIC: woven: a woven fabric\n")
+    lines = (b / "cyclic.csv").read_text().splitlines()
+    for i, line in enumerate(lines):
+        if i and not line.startswith("#"):
+            f = line.split(",")
+            f[6] = "%.6f" % (0.5 * float(f[6]))
+            lines[i] = ",".join(f)
+    (b / "cyclic.csv").write_text("\n".join(lines) + "\n")
+    assert cli.main([str(a), str(b), "-o", str(tmp_path / "out")]) == 0
+    md = (tmp_path / "out" / "isolator.md").read_text()
+    assert "F_v = 318 N, fabric woven (F5500)" in md and "F_v = 318 N, fabric solid (F5500)" in md
+    assert "Not measured for this load: rate, fills" in md          # not each other's fills
+    sec = md.split("The fabric's effect at F_v = 318 N: woven over solid")[1]
+    assert "| k_eff | 0.50 - 0.50 |" in sec and "| beta_eff | 1.00 - 1.00 |" in sec
+    assert "| Q_d | 0.50 - 0.50 |" in sec
