@@ -449,10 +449,13 @@ def zero_crossing_force(u, S):
 
 
 def fit_all(lanes):
-    """The four single-bag models fitted to the lanes: [ModelFit]."""
+    """The four single-bag models fitted to the lanes: [ModelFit]; Phillips-Hashash only with 3
+    amplitudes or more (its backbone's 3 parameters are fitted to the tips, its reduction's 3 to
+    the h_eq: fewer amplitudes leave it undetermined)."""
     masing = fit_masing(lanes)
     bil = fit_bilinear(lanes)
-    return [masing, fit_reduced(lanes, masing.model), bil, fit_bouc_wen(lanes, bil.model)]
+    reduced = [fit_reduced(lanes, masing.model)] if len(lanes.u) >= 3 else []
+    return [masing] + reduced + [bil, fit_bouc_wen(lanes, bil.model)]
 
 
 def recommend(fits, K_tol=0.10, h_tol=0.03):

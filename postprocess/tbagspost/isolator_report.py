@@ -111,6 +111,9 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
         bag_models[(run.fabric, run.fv_N)] = best.model
         fits_of[(run.fabric, run.fv_N)] = fits
         text += models_section(title(run, several), fits, best, why)
+        if len(lanes.u) < 3:
+            text += ["", "R-O, Phillips-Hashash: not fitted (its 3 backbone and 3 reduction "
+                     "parameters need 3 amplitudes or more; this run has %d)." % len(lanes.u)]
         for f in fits:
             row = dict(run=run.name, Fv_N=run.fv_N, fabric=run.fabric, model=f.name,
                        recommended=f is best,
