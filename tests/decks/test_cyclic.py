@@ -181,6 +181,9 @@ def test_fixed_frequency(cycled, tmp_path):
     ({"freq": 1e7}, "a CSV row would be shorter than a step"),
     ({"start": 3}, "start 3 is beyond the 2 amplitudes"),
     ({"Fv": -3}, "Fv must be > 0"),
+    # a missing checkpoint whose name has a dot: LAMMPS's if cannot compare it with 'none' (it
+    # stopped with 'Invalid Boolean syntax' until 2026-12-05)
+    ({"restart": "cyclic.restart.a9", "start": 2}, "no restart file cyclic.restart.a9"),
 ])
 def test_bad_variables(tmp_path, var, message):
     res = lmprun.run(INPUTS / "in.cyclic", tmp_path, variables=dict(PROTOCOL, **var))
