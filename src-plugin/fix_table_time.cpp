@@ -94,15 +94,15 @@ void FixTableTime::read_table(double limit)
       }
     }
   }
+  // every rank stops with rank 0's reason
   int n = (int) what.size();
   MPI_Bcast(&n, 1, MPI_INT, 0, world);
   if (n) {
-    if (comm->me == 0) {
-      const std::string where = line_no ? fmt::format(" line {}", line_no) : std::string();
-      error->one(FLERR, "fix table/time: {}{}: {}", file, where, what);
-    }
-    MPI_Barrier(world);
-    error->all(FLERR, "fix table/time: {} is not a usable table (rank 0 said why)", file);
+    what.resize(n);
+    MPI_Bcast(&what[0], n, MPI_CHAR, 0, world);
+    MPI_Bcast(&line_no, 1, MPI_INT, 0, world);
+    const std::string where = line_no ? fmt::format(" line {}", line_no) : std::string();
+    error->all(FLERR, "fix table/time: {}{}: {}", file, where, what);
   }
   int rows = (int) table.t.size();
   MPI_Bcast(&rows, 1, MPI_INT, 0, world);

@@ -158,3 +158,21 @@ def test_bad_histories(tiny_filled, tmp_path, text, message):
     res = lmprun.run(INPUTS / "in.cyclic", tmp_path, variables=dict(SIZE, history="sine.txt"))
     print(res.error_line())
     assert res.returncode != 0 and message in res.output
+
+
+def test_a_bad_table_stops_every_rank_with_the_reason(tmp_path):
+    """On 2 ranks: rank 0 reads the file; every rank stops with its reason (error->all)."""
+    (tmp_path / "h.txt").write_text("0 0\n1 1\n0.5 2\n")
+    res = lmprun.run(BOX.format(fix="fix h all table/time h.txt", rest="run 1"), tmp_path, np_ranks=2)
+    assert res.returncode != 0 and "h.txt line 3: time 0.5 does not increase" in res.output
+
+
+def test_the_value_on_two_ranks_is_rank_zeros(tmp_path):
+    fix = "fix h all table/time h.txt scale 0.5 start 3"
+    rows = []
+    for ranks in (1, 2):
+        wd = tmp_path / str(ranks)
+        wd.mkdir()
+        (wd / "h.txt").write_text("0 0\n0.35 2\n1.0 -1.2\n")
+        rows.append(thermo_rows(lmprun.run(BOX.format(fix=fix, rest="run 16"), wd, np_ranks=ranks).check().output))
+    assert len(rows[0]) == 17 and (rows[0] == rows[1]).all()
