@@ -259,27 +259,44 @@ class BoucWen(Model):
 
 @dataclass
 class Slider(Model):
-    """A friction slider of strength mu_N (N) in series with `bags` equal bags of model `bag`: the
-    bags take u_b, each u_b/bags, with S = bag(u_b/bags) while |S| < mu_N; the rest of u slips."""
+    """A friction slider of strength mu_N (N) and elastic stiffness k_slip (N/mm, before it slips:
+    an elastic-perfectly-plastic interface; inf: rigid-plastic) in series with `bags` equal bags of
+    model `bag`: the bags take u_b, each u_b/bags, the interface S/k_slip while |S| < mu_N; past
+    mu_N the rest of u slips."""
     bag: object
     mu_N: float
     bags: int = 1
+    k_slip: float = float("inf")
     name = "slider + bags"
 
     def stepper(self):
         m = self
+
+        def split(bag, target):
+            """The bags' share ub of `target` (= ub + S(ub)/k_slip), S(ub) from a copy of bag."""
+            if not np.isfinite(m.k_slip):
+                return target
+            lo, hi = min(0.0, target) - abs(target), max(0.0, target) + abs(target)
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if mid + bag.copy().step(mid / m.bags) / m.k_slip < target:
+                    lo = mid
+                else:
+                    hi = mid
+            return 0.5 * (lo + hi)
 
         class Step:
             def __init__(self):
                 self.bag, self.ub, self.slip = m.bag.stepper(), 0.0, 0.0
 
             def step(self, u):
+                ub = split(self.bag, u - self.slip)
                 trial = self.bag.copy()
-                s = trial.step((u - self.slip) / m.bags)
+                s = trial.step(ub / m.bags)
                 if abs(s) <= m.mu_N:
-                    self.bag, self.ub = trial, u - self.slip
+                    self.bag, self.ub = trial, ub
                     return s
-                lo, hi = self.ub, u - self.slip        # the bags' share at which |S| reaches mu_N
+                lo, hi = self.ub, ub                  # the bags' share at which |S| reaches mu_N
                 for _ in range(40):
                     mid = 0.5 * (lo + hi)
                     if abs(self.bag.copy().step(mid / m.bags)) < m.mu_N:
@@ -287,12 +304,13 @@ class Slider(Model):
                     else:
                         hi = mid
                 self.bag.step(lo / m.bags)
-                self.ub, self.slip = lo, u - lo
-                return float(np.copysign(m.mu_N, s))
+                S = float(np.copysign(m.mu_N, s))
+                self.ub, self.slip = lo, u - lo - S / m.k_slip
+                return S
         return Step()
 
     def params(self):
-        return dict(mu_N=self.mu_N, bags=self.bags, **self.bag.params())
+        return dict(mu_N=self.mu_N, k_slip=self.k_slip, bags=self.bags, **self.bag.params())
 
 
 # ---- fits ------------------------------------------------------------------------------------

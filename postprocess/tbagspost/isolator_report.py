@@ -64,6 +64,19 @@ def film_strength(run):
     return float(np.max(np.abs(run.stack["film1_Fabove"][sel])))
 
 
+def film_stiffness(run, mu_N):
+    """The film interface's stiffness before it slips (N/mm): from each amplitude's last cycle,
+    the film's slip amplitude a and its loop's h_eq give D_y = a (1 - pi h / 2) (exact for an
+    elastic-perfectly-plastic loop); mu_N over the median D_y of the loops that slip (h > 0.3)."""
+    from tbagspost import stack as stackmod
+
+    last = {}
+    for t in stackmod.split_table(run):
+        last[t["amp"]] = t
+    d = [t["film1_mm"] * (1 - np.pi * t["film1_h_eq"] / 2) for t in last.values() if t["film1_h_eq"] > 0.3]
+    return mu_N / float(np.median(d)) if d and np.median(d) > 0 else float("inf")
+
+
 def models_section(name, fits, best, why):
     lines = ["", "### %s" % name, "",
              "| model | parameters (+- 1 sd; mm, N) | rms of S along the loops (of S_a) | worst K_eq error |"
@@ -138,22 +151,31 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
                      "BAG_RUN STACK_RUN)."]
             continue
         mu_N = film_strength(run)
-        model = isolator.Slider(bag=bag, mu_N=mu_N, bags=run.bags)
+        k_slip = film_stiffness(run, mu_N)
         lanes = isolator.lanes_of(run.cycles())
-        fit = isolator.evaluate(model, lanes)
-        bags_only = isolator.evaluate(isolator.Slider(bag=bag, mu_N=np.inf, bags=run.bags), lanes,
-                                      label="%d bags, no slip" % run.bags)
+        stiff = isolator.Slider(bag=bag, mu_N=mu_N, bags=run.bags, k_slip=k_slip)
+        candidates = [
+            isolator.evaluate(stiff, lanes, label="elastic slider + bags"),
+            isolator.evaluate(isolator.Slider(bag=bag, mu_N=mu_N, bags=run.bags), lanes,
+                              label="rigid slider + bags"),
+            isolator.evaluate(isolator.Slider(bag=bag, mu_N=np.inf, bags=run.bags), lanes,
+                              label="%d bags, no slip" % run.bags)]
         text += ["", "### %s" % title(run, several), "",
                  "A friction slider of strength mu N = %.1f N (the film's largest force in the last "
-                 "cycle at the largest amplitude) in series with %d bags of the single bag's "
-                 "recommended model (%s) at the same load; no parameter fitted to the stack." % (
-                     mu_N, run.bags, bag.name)]
-        stack_models[(run.fabric, run.fv_N)] = [(fit.name, model), (bags_only.name, bags_only.model)]
-        best, why = isolator.recommend([fit, bags_only])
-        text += [""] + models_section("stack model", [fit, bags_only], best, why)[3:]
-        model_rows.append(dict(run=run.name, Fv_N=run.fv_N, fabric=run.fabric,
-                               model="slider + %d bags (%s)" % (run.bags, bag.name), recommended=True, rms_S=fit.rms_S, worst_K_rel=fit.worst_K,
-            worst_h_abs=fit.worst_h, mu_N=mu_N))
+                 "cycle at the largest amplitude) and elastic stiffness k_slip = %.0f N/mm before it "
+                 "slips (from the film interface's own loops: an elastic-perfectly-plastic loop of "
+                 "slip amplitude a has h = (2/pi)(1 - D_y/a), D_y = mu N / k_slip; the median D_y over "
+                 "the amplitudes, %.3f mm), in series with %d bags of the single bag's recommended "
+                 "model (%s) at the same load; nothing fitted to the stack's S." % (
+                     mu_N, k_slip, mu_N / k_slip, run.bags, bag.name)]
+        stack_models[(run.fabric, run.fv_N)] = [(f.name, f.model) for f in candidates]
+        best, why = isolator.recommend(candidates)
+        text += [""] + models_section("stack model", candidates, best, why)[3:]
+        for f in candidates:
+            model_rows.append(dict(run=run.name, Fv_N=run.fv_N, fabric=run.fabric,
+                                   model="%s (%s)" % (f.name, bag.name), recommended=f is best,
+                                   rms_S=f.rms_S, worst_K_rel=f.worst_K, worst_h_abs=f.worst_h,
+                                   mu_N=f.model.mu_N, k_slip=f.model.k_slip))
         table = design.run_table(run)
         lam = design.lambdas(table)
         prop_rows += design.property_rows(run.name, run.fv_N, table, lam, run.fabric)

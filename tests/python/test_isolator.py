@@ -93,6 +93,21 @@ def test_slider_in_series_is_rigid_plastic_with_the_bags_in_front():
     assert np.abs(S).max() == pytest.approx(20.0, rel=1e-9)
 
 
+@pytest.mark.parametrize("amp", [0.25, 1.0, 3.0])
+def test_an_elastic_slider_behind_bags_is_their_series_spring(amp):
+    """k_slip 1000 N/mm in series with two bags of 400 N/mm: an elastic stiffness of
+    1 / (2/400 + 1/1000) = 166.7 N/mm up to 20 N (D_y 0.12 mm), then slip: the loop's D_y and
+    damping are the elastic-perfectly-plastic ones, h = (2/pi)(1 - D_y/D)."""
+    bag = iso.Bilinear(K_u=400.0, Q_d=1e9, K_d=0.0)
+    lanes = lanes_of(iso.Slider(bag=bag, mu_N=20.0, bags=2, k_slip=1000.0), amps=(amp,), n=800)
+    u, S = lanes.last(0, lanes.u[0]), lanes.last(0, lanes.S[0])
+    p = design.properties(u, S)
+    d_y = 20.0 / (1.0 / (2 / 400.0 + 1 / 1000.0))
+    assert p.D_y == pytest.approx(d_y, rel=0.02)
+    assert p.beta_eff == pytest.approx(2 / np.pi * (1 - d_y / amp), rel=0.02, abs=2e-3)
+    assert np.abs(S).max() == pytest.approx(20.0, rel=1e-9)
+
+
 def test_bilinear_loop_properties_are_its_own():
     """ASCE/AASHTO properties of a bilinear loop (vertices exact: sampled finely): k_eff = K_eq,
     beta_eff = h_eq (to 1e-6), and Q_d, K_d, D_y those of the model."""
