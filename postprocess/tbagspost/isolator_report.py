@@ -181,7 +181,12 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
         prop_rows += design.property_rows(run.name, run.fv_N, table, lam, run.fabric)
         text += properties_section(run, table, lam, None, [])
     written, check_rows = [], []
-    for h in histories or []:
+    histories = list(histories or [])
+    names = [h.name for h in histories]
+    for h in histories:
+        # a figure per history, named by its folder (and the one above it when two share a name)
+        fig_name = h.name if names.count(h.name) == 1 else "%s-%s" % (
+            h.path.resolve().parent.parent.name, h.name)
         pool = stack_models if h.stack else {key: [(f.name, f.model) for f in fits]
                                               for key, fits in fits_of.items()}
         models = match(pool, h)
@@ -196,7 +201,7 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
         rows = history.compare(h, models)
         check_rows += rows
         text += history.section(h, rows, what)
-        written += style.save(history.figure(h, rows), out / ("history-%s" % h.name), formats, dpi)
+        written += style.save(history.figure(h, rows), out / ("history-%s" % fig_name), formats, dpi)
     if check_rows:
         history.write_csv(out / "history_check.csv", check_rows)
         written.append(out / "history_check.csv")
