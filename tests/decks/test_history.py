@@ -18,6 +18,7 @@ units           si
 atom_style      sphere
 region          b block 0 1 0 1 0 1
 create_box      1 b
+create_atoms    1 single 0.5 0.5 0.5        # (write_restart of an empty box trips UBSan in LAMMPS)
 timestep        0.1
 {fix}
 thermo_style    custom step f_h f_h[1] f_h[2] f_h[3] f_h[4] f_h[5]
