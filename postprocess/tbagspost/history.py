@@ -8,12 +8,11 @@ the DEM's largest |S|, and the work done on the isolator over the history, W = i
 (mJ from N and mm; u starts and ends at 0, so W is the energy dissipated but for the elastic
 energy left at the end), DEM and model.
 """
-import csv
 from pathlib import Path
 
 import numpy as np
 
-from tbagspost import fail, read_columns, style, superseded
+from tbagspost import design, fail, read_columns, style, superseded
 from tbagspost.cyclic import RowsRun
 
 COLUMNS = ("time_s", "th_s", "chunk", "u_mm", "S_N", "Fv_N")
@@ -51,10 +50,10 @@ def compare(run, models):
                  S_peak_N=peak)]
     for name, model in models:
         Sm = model.simulate(np.r_[0.0, u])[1:]
+        Wm = work(u, Sm)
         rows.append(dict(run=run.name, Fv_N=run.fv_N, model=name,
                          rms_of_peak=float(np.sqrt(np.mean((Sm - S) ** 2)) / peak),
-                         W_mJ=work(u, Sm), W_ratio=work(u, Sm) / W, S_peak_N=float(np.max(np.abs(Sm))),
-                         S=Sm))
+                         W_mJ=Wm, W_ratio=Wm / W, S_peak_N=float(np.max(np.abs(Sm))), S=Sm))
     return rows
 
 
@@ -93,10 +92,7 @@ def section(run, rows, what):
     return lines
 
 
+
 def write_csv(path, rows):
-    keys = ["run", "Fv_N", "model", "rms_of_peak", "W_mJ", "W_ratio", "S_peak_N"]
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
-        w.writeheader()
-        for r in rows:
-            w.writerow(r)
+    """history_check.csv: the rows of compare() without the model's S along the history."""
+    design.write_csv(path, [{k: v for k, v in r.items() if k != "S"} for r in rows])
