@@ -17,6 +17,9 @@ from tbagspost import cyclic, stack  # noqa: E402
 INPUTS = lmprun.INPUTS
 SIZE = lmprun.TINY_BAG
 PROTOCOL = dict(SIZE, amps="0.1 0.25", cycles=2, vpeak=0.03)
+# the first amplitude alone, for the runs whose checks read amplitude 1 only (the suite's time: the
+# 0.25 mm cycles are 70 % of a run's cycling)
+FIRST = dict(PROTOCOL, amps="0.1")
 G = 9.81
 
 
@@ -25,11 +28,11 @@ def fill(tiny_filled):
     return tiny_filled / "fill.data"
 
 
-def cycle(fill, wd, np_ranks=1, **variables):
+def cycle(fill, wd, np_ranks=1, protocol=PROTOCOL, **variables):
     wd.mkdir(parents=True, exist_ok=True)
     shutil.copy(fill, wd / "fill.data")
     res = lmprun.run(INPUTS / "in.cyclic", wd, np_ranks=np_ranks,
-                     variables=dict(PROTOCOL, **variables)).check()
+                     variables=dict(protocol, **variables)).check()
     (wd / "screen.cyclic.txt").write_text(res.output)
     return res
 
@@ -57,7 +60,7 @@ def single(fill, tmp_path_factory):
 @pytest.fixture(scope="module")
 def gripped(fill, tmp_path_factory):
     wd = tmp_path_factory.mktemp("gripped")
-    res = cycle(fill, wd, bags=2, film_mu="1e10")
+    res = cycle(fill, wd, protocol=FIRST, bags=2, film_mu="1e10")
     return stack.StackRun(wd), res
 
 
@@ -133,13 +136,14 @@ def test_one_and_two_ranks_agree(fill, sliding, tmp_path):
     the bags settle under gravity the film rattles in its 0.2 mm clearance, and a round-off
     difference of the rank sums (1e-11 m of the film's height after 6,000 steps) grows to 1e-7 m
     by 16,000 steps (measured with full-precision output); tests/decks/test_film.py compares a
-    film's run on 1 and 2 ranks to round-off."""
+    film's run on 1 and 2 ranks to round-off. The 2-rank run has the first amplitude only (the
+    same protocol up to its end)."""
     one, _ = sliding
     wd = tmp_path / "np2"
-    cycle(fill, wd, np_ranks=2, bags=2, film_mu=0.05)
+    cycle(fill, wd, np_ranks=2, protocol=FIRST, bags=2, film_mu=0.05)
     two = stack.StackRun(wd)
-    assert len(two.csv) == len(one.csv)
-    for amp in (1, 2):
+    assert len(two.csv) == np.count_nonzero(one.csv["amp"] == 1)
+    for amp in (1,):
         a, b = last_cycle(one, amp), last_cycle(two, amp)
         ca = [c for c in cyclic.table(one) if c["amp"] == amp][-1]
         cb = [c for c in cyclic.table(two) if c["amp"] == amp][-1]
