@@ -35,7 +35,7 @@ namespace law = tbags::contact;
 static constexpr double CAND_MOVE_LIMIT = 0.49;
 
 PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
-    Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), size_history(3),
+    Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), roll_mean(false), size_history(3),
     history_model(-1), ntypes1(0),
     freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
     maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr),
@@ -114,7 +114,8 @@ void PairGranHertzRolling::allocate()
 }
 
 /* ----------------------------------------------------------------------
-   pair_style gran/hertz/rolling epsd|cdt|none [limit_damping]
+   pair_style gran/hertz/rolling epsd|cdt|none [limit_damping] [rolling_radius effective|mean]
+     [kernel auto|avx2|baseline] [contact_skin f]
 ------------------------------------------------------------------------- */
 
 void PairGranHertzRolling::settings(int narg, char **arg)
@@ -128,11 +129,19 @@ void PairGranHertzRolling::settings(int narg, char **arg)
   else
     error->all(FLERR, "{}: unknown rolling model '{}'; use epsd, cdt or none", STYLE, arg[0]);
   limit_damping = false;
+  roll_mean = false;
   kernel_choice = KERNEL_AUTO;
   contact_skin = 0.25;
   for (int iarg = 1; iarg < narg; iarg++) {
     if (strcmp(arg[iarg], "limit_damping") == 0) {
       limit_damping = true;
+    } else if (strcmp(arg[iarg], "rolling_radius") == 0) {
+      const std::string r = iarg + 1 < narg ? arg[++iarg] : "";
+      if (r == "effective") roll_mean = false;
+      else if (r == "mean") roll_mean = true;
+      else
+        error->all(FLERR, "{}: rolling_radius must be effective (R* = RiRj/(Ri+Rj)) or mean "
+                   "((Ri+Rj)/2), not '{}'", STYLE, r);
     } else if (strcmp(arg[iarg], "kernel") == 0) {
       if (iarg + 1 >= narg) error->all(FLERR, "{}: kernel needs auto, avx2 or baseline", STYLE);
       const std::string k = arg[++iarg];
@@ -148,8 +157,8 @@ void PairGranHertzRolling::settings(int narg, char **arg)
         error->all(FLERR, "{}: contact_skin must be a fraction >= 0 of the neighbor skin (got {})",
                    STYLE, contact_skin);
     } else {
-      error->all(FLERR, "{}: unknown keyword '{}'; use limit_damping, kernel or contact_skin",
-                 STYLE, arg[iarg]);
+      error->all(FLERR, "{}: unknown keyword '{}'; use limit_damping, rolling_radius, kernel or "
+                 "contact_skin", STYLE, arg[iarg]);
     }
   }
   size_history = law::history_size(rolling);
@@ -327,11 +336,12 @@ void PairGranHertzRolling::choose_kernel()
                why);
   simd_avx2 = (have && kernel_choice != KERNEL_BASELINE) ? 1 : 0;
   if (simd_avx2 != simd_logged && comm->me == 0)
-    utils::logmesg(lmp, "{}: batch kernel {} (kernel {}{}{})\n", STYLE,
+    utils::logmesg(lmp, "{}: batch kernel {} (kernel {}{}{}); rolling radius {}\n", STYLE,
                    simd_avx2 ? "avx2, 4 contacts per vector" : "baseline x86-64, 2 contacts per vector",
                    kernel_choice == KERNEL_AUTO ? "auto" : kernel_choice == KERNEL_AVX2 ? "avx2" : "baseline",
                    (!have && kernel_choice == KERNEL_AUTO) ? ": " : "",
-                   (!have && kernel_choice == KERNEL_AUTO) ? why : "");
+                   (!have && kernel_choice == KERNEL_AUTO) ? why : "",
+                   roll_mean ? "mean (Ri+Rj)/2" : "effective R*");
   simd_logged = simd_avx2;
 }
 
@@ -351,8 +361,9 @@ double PairGranHertzRolling::init_one(int i, int j)
   }
   const double Es = law::mix_E(Emod[i], poiss[i], Emod[j], poiss[j]);
   const double Gs = law::mix_G(Emod[i], poiss[i], Emod[j], poiss[j]);
-  const law::Params p = law::make_params(Es, Gs, pick(cor, "restitution"), pick(mu, "friction"),
-                                         pick(mur, "rolling friction"), rolling, limit_damping);
+  law::Params p = law::make_params(Es, Gs, pick(cor, "restitution"), pick(mu, "friction"),
+                                   pick(mur, "rolling friction"), rolling, limit_damping);
+  p.roll_mean = roll_mean;
   law[i * ntypes1 + j] = law[j * ntypes1 + i] = p;
 
   double cut = maxrad[i] + maxrad[j];
@@ -488,33 +499,40 @@ void *PairGranHertzRolling::extract(const char *str, int &dim)
 
 /* ---------------------------------------------------------------------- */
 
-// restart settings: the rolling model plus SETTINGS_V2 marks the record that also holds the kernel
-// choice and the contact skin (files of tbags 0.3 and before hold the model and limit_damping only)
+// restart settings: the rolling model plus SETTINGS_V3 marks the record that also holds the kernel
+// choice, the contact skin and the rolling radius; SETTINGS_V2 the kernel and skin only (tbags
+// 0.4 to 0.6); files of tbags 0.3 and before hold the model and limit_damping only
 static constexpr int SETTINGS_V2 = 16;
+static constexpr int SETTINGS_V3 = 32;
 
 void PairGranHertzRolling::write_restart_settings(FILE *fp)
 {
-  int head[3] = {rolling + SETTINGS_V2, limit_damping ? 1 : 0, kernel_choice};
+  int head[3] = {rolling + SETTINGS_V3, limit_damping ? 1 : 0, kernel_choice};
   fwrite(head, sizeof(int), 3, fp);
   fwrite(&contact_skin, sizeof(double), 1, fp);
+  const int mean = roll_mean ? 1 : 0;
+  fwrite(&mean, sizeof(int), 1, fp);
 }
 
 void PairGranHertzRolling::read_restart_settings(FILE *fp)
 {
-  int head[3] = {0, 0, KERNEL_AUTO};
+  int head[4] = {0, 0, KERNEL_AUTO, 0};
   if (comm->me == 0) {
     utils::sfread(FLERR, head, sizeof(int), 2, fp, nullptr, error);
-    if (head[0] >= SETTINGS_V2) {
+    const int version = head[0] >= SETTINGS_V3 ? 3 : head[0] >= SETTINGS_V2 ? 2 : 1;
+    if (version >= 2) {
       utils::sfread(FLERR, &head[2], sizeof(int), 1, fp, nullptr, error);
       utils::sfread(FLERR, &contact_skin, sizeof(double), 1, fp, nullptr, error);
-      head[0] -= SETTINGS_V2;
     }
+    if (version >= 3) utils::sfread(FLERR, &head[3], sizeof(int), 1, fp, nullptr, error);
+    head[0] -= version == 3 ? SETTINGS_V3 : version == 2 ? SETTINGS_V2 : 0;
   }
-  MPI_Bcast(head, 3, MPI_INT, 0, world);
+  MPI_Bcast(head, 4, MPI_INT, 0, world);
   MPI_Bcast(&contact_skin, 1, MPI_DOUBLE, 0, world);
   rolling = head[0];
   limit_damping = head[1] != 0;
   kernel_choice = head[2];
+  roll_mean = head[3] != 0;
   size_history = law::history_size(rolling);
 }
 

@@ -45,6 +45,7 @@ class PairGranHertzRolling : public Pair {
   double material_nu(int i) const { return poiss[i]; }
   int rolling_model() const { return rolling; }
   bool damping_limited() const { return limit_damping; }
+  bool rolling_radius_mean() const { return roll_mean; }
 
   // the touching pairs, gathered for the batch law (law/contact_chain.h)
   using Batch = tbags::contact::Batch;
@@ -53,6 +54,7 @@ class PairGranHertzRolling : public Pair {
  protected:
   int rolling;            // tbags::contact::Rolling
   bool limit_damping;
+  bool roll_mean;         // rolling_radius mean: (Ri+Rj)/2, else R* (law::rolling_radius())
   int size_history;
   int history_model;    // the rolling model the history store was made for (-1: none yet)
   int ntypes1;            // ntypes + 1

@@ -45,6 +45,7 @@ RANGES = {
     "film_mu_below": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (film_mu)"),
     "yarn_shear": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (the fabric's value)"),
     "yarn_bendE": (or_minus_one(positive), "positive (Pa), or -1 (the fabric's value)"),
+    "bag_mur": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (0.05)"),
     "per_size": (or_minus_one(whole(1)), "a whole number, 1 or more, or -1 (from e0)"),
     "compress_to": (lambda x: 0 <= x < 1, "from 0 (none) to below 1 (a fraction of F_v)"),
     "film_nu": (lambda x: 0 <= x < 0.5, "from 0 to below 0.5"),

@@ -37,7 +37,7 @@ template <int W> struct alignas(64) Lanes {
   double vr[3][N], wi[3][N], wj[3][N], h[6][N];
   double f[3][N], ti[3][N], tj[3][N];
   // from the normal loop to the tangential and rolling loops
-  double n[3][N], vt[3][N], a[N], sqma[N], fn[N], delta[N], reff[N];
+  double n[3][N], vt[3][N], a[N], sqma[N], fn[N], delta[N], reff[N], rroll[N];
   double meff[N], fne[N], vnnr[N];    // from the geometry loop to the normal force
   // one contact's parts (Result): tangential force, rolling pseudo-force, centre distance
   double fs[3][N], fr[3][N], r[N];
@@ -92,6 +92,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
     b.vnnr[l] = vnnr;
     b.delta[l] = o.delta;
     b.reff[l] = reff;
+    b.rroll[l] = rolling_radius(p, reff, b.radi[l], b.radj[l], wall);
     if constexpr (Lanes<W>::ONE) {
       b.r[l] = o.r;
       double vnd = vnnr;
@@ -157,7 +158,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
       const Params &p = SAME ? *same : *b.p[l];
       V3 hr = row3(b.h + 3, l);
       redo |= rolling_history<SAME, FAST>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]),
-                                          b.reff[l], row3(b.wi, l), row3(b.wj, l), dt, hr);
+                                          b.rroll[l], row3(b.wi, l), row3(b.wj, l), dt, hr);
       set_row3(b.h + 3, l, hr);
     }
   }
@@ -169,7 +170,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
     if constexpr (ROLL == ROLLING_EPSD) hr = row3(b.h + 3, l);
     V3 fr, troll;
     bool on;
-    rolling_force<ROLL, SAME>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]), b.reff[l],
+    rolling_force<ROLL, SAME>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]), b.rroll[l],
                               row3(b.wi, l), row3(b.wj, l), hr, fr, troll, on);
     if (ROLL == ROLLING_EPSD) set_row3(b.h + 3, l, hr);
     if (Lanes<W>::ONE) set_row3(b.fr, l, fr);

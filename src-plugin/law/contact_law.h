@@ -64,6 +64,7 @@ struct Params {
   double krs = 0.0;    // EPSD: k_s = krs a, krs = 2.25 mu_r^2 2 E*
   int rolling = ROLLING_NONE;
   bool limit_damping = false;    // clip attractive total normal force to zero
+  bool roll_mean = false;        // the rolling radius R_r: (R_i + R_j)/2, else R* (rolling_radius())
 };
 
 inline Params make_params(double Estar, double Gstar, double e, double mu, double mur, int rolling,
@@ -132,7 +133,7 @@ struct Result {
   double delta;                 // overlap
   double r;                     // centre distance
   double fs[3];                 // tangential force on i
-  double fr[3];                 // rolling pseudo-force: M_r(i) = R* n x fr
+  double fr[3];                 // rolling pseudo-force: M_r(i) = R_r n x fr
 };
 
 inline bool touching(double rsq, double radsum) { return rsq < radsum * radsum; }
@@ -158,6 +159,16 @@ TBAGS_INLINE void effective_frozen(double mi_signed, double mj_signed, double ra
   effective(mi, mj, radi, radj, meff, reff);
   meff = mi_signed < 0.0 ? mj : meff;
   meff = mj_signed < 0.0 ? mi : meff;
+}
+
+// The rolling radius R_r: the lever arm of the rolling resistance, in its relative velocity
+// R_r (w_i - w_j) x n, its torque R_r n x F_r, hence its cap mu_r R_r |F_n| and its stiffness
+// k_s R_r^2. R* (EPSD as Ai et al. 2011, LAMMPS's rolling sds) or, p.roll_mean, the mean radius
+// (R_i + R_j)/2 (YADE's Mindlin law with its Rmean): twice R* for equal spheres, where it is the
+// law of R* with twice mu_r (k_s grows with mu_r^2). A plate has no radius: R_r = R_i (= R*) there.
+TBAGS_INLINE double rolling_radius(const Params &p, double reff, double radi, double radj, bool wall)
+{
+  return (p.roll_mean && !wall) ? 0.5 * (radi + radj) : reff;
 }
 
 // The stages' outputs for one contact (contact_geometry() and tangential_force() fill them).
@@ -273,17 +284,17 @@ TBAGS_INLINE void tangential_force(const Params &p, const vec::V3 &n, const vec:
 }
 
 // EPSD rolling history (stage 5, when the history is integrated): rotated onto the tangent plane and integrated
-// with the rolling velocity R* (w_i - w_j) x n where rolling acts (p.mur > 0; ALLON: known), else
+// with the rolling velocity R_r (w_i - w_j) x n (rr = R_r, rolling_radius()) where rolling acts (p.mur > 0; ALLON: known), else
 // left as it was. FAST: as tangential_history() (returns whether the exact rotation was needed
 // where rolling acts).
 template <bool ALLON = false, bool FAST = false>
 TBAGS_INLINE bool rolling_history(const Params &p, const vec::V3 &n, double a, double fncrit,
-                                  double reff, const vec::V3 &wi, const vec::V3 &wj, double dt,
+                                  double rr, const vec::V3 &wi, const vec::V3 &wj, double dt,
                                   vec::V3 &hr)
 {
   using namespace vec;
   const bool on = ALLON || p.mur > 0.0;
-  const V3 vrl = reff * cross(wi - wj, n);
+  const V3 vrl = rr * cross(wi - wj, n);
   bool big = false;
   const V3 h = rotate_history<FAST>(hr, n, p.krs * a, p.mur * fncrit, big) + dt * vrl;
   hr = select(on, h, hr);
@@ -292,12 +303,12 @@ TBAGS_INLINE bool rolling_history(const Params &p, const vec::V3 &n, double a, d
 
 // Rolling resistance (stage 6; ROLL not ROLLING_NONE) from n, a, fncrit = |F_n| and, for
 // EPSD, the integrated history hr (rolling_history()): the rolling pseudo-force fr and the
-// torque troll = R* n x fr (i gets +troll, j -troll); EPSD: the cap |fr| <= mu_r |F_n| (hr
+// torque troll = R_r n x fr (rr = R_r, rolling_radius(); i gets +troll, j -troll); EPSD: the cap |fr| <= mu_r |F_n| (hr
 // rescaled to it); CDT: |fr| = mu_r |F_n| against the rolling velocity. on: rolling acts
 // (p.mur > 0), else fr and troll are zero and hr is left as it was.
 template <int ROLL, bool ALLON = false>
 TBAGS_INLINE void rolling_force(const Params &p, const vec::V3 &n, double a, double fncrit,
-                                double reff, const vec::V3 &wi, const vec::V3 &wj, vec::V3 &hr,
+                                double rr, const vec::V3 &wi, const vec::V3 &wj, vec::V3 &hr,
                                 vec::V3 &fr, vec::V3 &troll, bool &on)
 {
   using namespace vec;
@@ -314,12 +325,12 @@ TBAGS_INLINE void rolling_force(const Params &p, const vec::V3 &n, double a, dou
     fr = select(cap, sr * fr, fr);
     hr = select(on, h, hr);
   } else {    // CDT: constant magnitude against the rolling velocity
-    const V3 vrl = reff * cross(wi - wj, n);
+    const V3 vrl = rr * cross(wi - wj, n);
     const double vl = std::sqrt(dot(vrl, vrl));
     fr = select(vl > 0.0, (-frcrit / vl) * vrl, V3{0.0, 0.0, 0.0});
   }
   fr = select(on, fr, V3{0.0, 0.0, 0.0});
-  troll = reff * cross(n, fr);
+  troll = rr * cross(n, fr);
 }
 
 }    // namespace contact

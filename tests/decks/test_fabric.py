@@ -117,6 +117,7 @@ def test_rest_length_is_the_bag_spacing(tmp_path):
     ({"fabric": "knitted"}, "fabric must be solid, words or woven"),
     ({"yarn_bendE": -5e9}, "yarn_bendE must be > 0 Pa"),
     ({"yarn_shear": -3}, "yarn_shear must be 0 or more"),
+    ({"bag_mur": -0.5}, "bag_mur must be 0 or more"),
 ])
 def test_bad_fabric_input(tmp_path, var, message):
     r = lmprun.run("variable tbags index x\ninclude ${tbags}/inputs/fabric.lmp\n", tmp_path, variables=var)

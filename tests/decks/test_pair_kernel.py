@@ -130,6 +130,8 @@ def test_candidate_list_gives_the_whole_list_bits(tmp_path, data, model):
     ("contact_skin", "contact_skin needs a fraction"),
     ("kernel sse9", "kernel must be auto, avx2 or baseline, not 'sse9'"),
     ("kernel", "kernel needs auto, avx2 or baseline"),
+    ("rolling_radius", "rolling_radius must be effective (R* = RiRj/(Ri+Rj)) or mean"),
+    ("rolling_radius big", "rolling_radius must be effective (R* = RiRj/(Ri+Rj)) or mean ((Ri+Rj)/2), not 'big'"),
 ])
 def test_bad_pair_style_keywords(tmp_path, data, options, message):
     r = lmprun.run(DECK, tmp_path, variables={"data": data, "model": "epsd", "newton": "on",
@@ -157,3 +159,20 @@ def test_kernel_keywords_survive_a_restart(tmp_path, data):
     line = [l for l in res.output.splitlines() if "batch kernel" in l][0]
     print(line)
     assert "batch kernel baseline" in line and "(kernel baseline)" in line
+    assert "rolling radius effective R*" in line
+
+
+def test_rolling_radius_survives_a_restart(tmp_path, data):
+    """rolling_radius mean is stored in the restart file (and logged): the run that reads it
+    continues with the mean radius, where the default (effective) gives other torques."""
+    deck = DECK.replace("write_dump all custom final.dump", "write_restart kernel.restart\nwrite_dump all custom final.dump")
+    first = lmprun.run(deck, tmp_path, variables={"data": data, "model": "epsd", "newton": "on",
+                                                  "options": "rolling_radius mean"}).check()
+    assert "rolling radius mean (Ri+Rj)/2" in first.output
+    res = lmprun.run(RESTARTED, tmp_path).check()
+    line = [l for l in res.output.splitlines() if "batch kernel" in l][0]
+    print(line)
+    assert "rolling radius mean (Ri+Rj)/2" in line
+    effective = run(tmp_path / "effective", data, "epsd")
+    assert (tmp_path / "effective" / "final.dump").read_text() != (tmp_path / "final.dump").read_text()
+    assert "rolling radius effective R*" in effective.output

@@ -111,6 +111,7 @@ def test_a_new_run_reuses_what_matches_and_overwrite_starts_again(tmp_path):
     (["-var", "yarn_shear", "-2"], "-var yarn_shear -2: must be 0 or more, or -1"),
     (["-var", "fabric", "knitted"], "-var fabric knitted: must be solid or words or woven"),
     (["-var", "yarn_bendE", "-5e9"], "-var yarn_bendE -5e9: must be positive"),
+    (["-var", "bag_mur", "-0.5"], "-var bag_mur -0.5: must be 0 or more, or -1"),
     (["cyclic", "-var", "amps", "1 0.5"], "-var amps 1 0.5: positive amplitudes in mm, increasing"),
     (["-var", "tbags", "/x"], "-var tbags is set by the launcher"),
     (["--out", "/proc/x"], "cannot write the outputs to /proc/x"),

@@ -383,6 +383,91 @@ TEST(Rolling, NoneHasNoRollingTorque)
   EXPECT_EQ(o.fr[1], 0.0);
 }
 
+// rolling_radius mean (YADE's Rmean) against effective (R*): the law of R_r everywhere in the
+// rolling model (velocity, torque, cap, stiffness)
+namespace {
+Params with_radius(Params p, bool mean)
+{
+  p.roll_mean = mean;
+  return p;
+}
+// torques on i and j over n steps of two equal spheres rolling on each other about y (w_j = -w_i:
+// the contact point does not slide, so the torques are the rolling resistance alone)
+std::vector<double> rolling_torques(const Params &p, Pair2 s, int n)
+{
+  std::vector<double> t;
+  double hist[6] = {0};
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  s.wi[1] = 1.5; s.wj[1] = -1.5;
+  for (int k = 0; k < n; k++) {
+    Contact c = s.c();
+    Result o;
+    compute(p, c, hist, true, o);
+    t.insert(t.end(), {o.ti[0], o.ti[1], o.tj[0], o.tj[1]});
+  }
+  return t;
+}
+}    // namespace
+
+TEST(Rolling, MeanRadiusIsEffectiveWithTwiceMurForEqualSpheres)
+{
+  // equal spheres: (R+R)/2 = 2 R*, and k_s grows with mu_r^2, so mean with mu_r is effective
+  // with 2 mu_r: the same torques, elastic (first steps) and at the cap (later: 2000 steps of
+  // 1e-6 s at 3 rad/s roll 6 mrad, far past the elastic limit of about 0.1 mrad)
+  for (int roll : {ROLLING_EPSD, ROLLING_CDT}) {
+    const auto a = rolling_torques(with_radius(sand(0.2, 0.31, 0.05, roll), true), Pair2(), 2000);
+    const auto b = rolling_torques(with_radius(sand(0.2, 0.31, 0.10, roll), false), Pair2(), 2000);
+    const auto c = rolling_torques(with_radius(sand(0.2, 0.31, 0.05, roll), false), Pair2(), 2000);
+    for (size_t k = 0; k < a.size(); k++) expect_rel(a[k], b[k], 1e-9);
+    EXPECT_GT(std::fabs(a.back() - c.back()), 0.5 * std::fabs(c.back()));    // and not mu_r's
+  }
+}
+
+TEST(Rolling, MeanRadiusOfUnequalSpheres)
+{
+  // R_i = 2.5, R_j = 1.5 mm: R* = 0.9375 mm, (R_i+R_j)/2 = 2 mm. First step (elastic): |M_r| =
+  // k_s R_r^2 theta; at the cap (a huge rolling history): |M_r| = mu_r R_r |F_n|
+  const double mur = 0.05;
+  Pair2 s;
+  s.rj = 1.5e-3;
+  s.xi[2] = s.ri + s.rj - 1e-5;
+  s.wi[0] = 1.0;
+  for (bool mean : {false, true}) {
+    const Params p = with_radius(sand(1.0, 0.31, mur, ROLLING_EPSD), mean);
+    Contact c = s.c();
+    const double rr = mean ? 0.5 * (s.ri + s.rj) : c.reff;
+    double hist[6] = {0};
+    Result o;
+    compute(p, c, hist, true, o);
+    const double a = std::sqrt(c.reff * o.delta);
+    const double ks = 2.25 * mur * mur * 2.0 * mix_E(E_SAND, NU, E_SAND, NU) * a;
+    expect_rel(std::fabs(rr * o.fr[1]), ks * rr * rr * c.dt);
+    double hist2[6] = {0, 0, 0, 0, 1.0, 0};
+    compute(p, c, hist2, true, o);
+    expect_rel(rr * std::hypot(o.fr[0], o.fr[1]), mur * rr * o.fn);
+  }
+}
+
+TEST(Rolling, MeanRadiusAtAPlateIsTheParticles)
+{
+  // a plate has no radius: R_r = R_i under both conventions (the same bits)
+  const Params pe = with_radius(sand(0.2, 0.31, 0.05, ROLLING_EPSD), false);
+  const Params pm = with_radius(pe, true);
+  const double ri = 2.5e-3;
+  double dx[3] = {0, 0, ri - 1e-5}, z[3] = {0, 0, 0}, w[3] = {0, 3.0, 0};
+  Contact c;
+  c.dx = dx; c.reff = ri; c.meff = 1e-4;
+  c.radi = ri; c.radj = 0.0; c.vi = z; c.vj = z; c.wi = w; c.wj = z; c.wall = true; c.dt = 1e-6;
+  double h1[6] = {0}, h2[6] = {0};
+  Result a, b;
+  for (int k = 0; k < 50; k++) {
+    compute(pe, c, h1, true, a);
+    compute(pm, c, h2, true, b);
+  }
+  EXPECT_EQ(a.ti[1], b.ti[1]);
+  EXPECT_NE(a.ti[1], 0.0);
+}
+
 TEST(Wall, InfiniteRadiusAndMass)
 {
   // wall contact: R* = r_i, lever arm r_i; E* from the particle and plate materials
