@@ -46,12 +46,12 @@ def compare(run, models):
     u, S = run.csv["u_mm"], run.csv["S_N"]
     peak = float(np.max(np.abs(S)))
     W = work(u, S)
-    rows = [dict(run=run.name, Fv_N=run.fv_N, model="DEM", rms_of_peak=0.0, W_mJ=W, W_ratio=1.0,
-                 S_peak_N=peak)]
+    rows = [dict(run=run.name, fabric=run.fabric, Fv_N=run.fv_N, model="DEM", rms_of_peak=0.0,
+                 W_mJ=W, W_ratio=1.0, S_peak_N=peak)]
     for name, model in models:
         Sm = model.simulate(np.r_[0.0, u])[1:]
         Wm = work(u, Sm)
-        rows.append(dict(run=run.name, Fv_N=run.fv_N, model=name,
+        rows.append(dict(run=run.name, fabric=run.fabric, Fv_N=run.fv_N, model=name,
                          rms_of_peak=float(np.sqrt(np.mean((Sm - S) ** 2)) / peak),
                          W_mJ=Wm, W_ratio=Wm / W, S_peak_N=float(np.max(np.abs(Sm))), S=Sm))
     return rows
@@ -91,6 +91,20 @@ def section(run, rows, what):
             r["model"], 100 * r["rms_of_peak"], r["W_mJ"], r["W_ratio"], r["S_peak_N"]))
     return lines
 
+
+
+def figure_names(paths):
+    """A name per history run folder for its figure: the folder's name, or where two share it the
+    shortest tail of their paths that tells them apart, joined by '-' (runs-history/H3730 and
+    runs-history-woven/H3730: runs-history-H3730, runs-history-woven-H3730)."""
+    parts = [Path(p).resolve().parts for p in paths]
+    names = []
+    for mine in parts:
+        for k in range(1, len(mine) + 1):
+            if sum(other[-k:] == mine[-k:] for other in parts) == 1:
+                break
+        names.append("-".join(mine[-k:]))
+    return names
 
 
 def write_csv(path, rows):

@@ -182,11 +182,8 @@ def write(runs, out, slow=None, histories=None, formats=("png",), dpi=None):
         text += properties_section(run, table, lam, None, [])
     written, check_rows = [], []
     histories = list(histories or [])
-    names = [h.name for h in histories]
-    for h in histories:
-        # a figure per history, named by its folder (and the one above it when two share a name)
-        fig_name = h.name if names.count(h.name) == 1 else "%s-%s" % (
-            h.path.resolve().parent.parent.name, h.name)
+    fig_names = history.figure_names([h.path for h in histories])
+    for h, fig_name in zip(histories, fig_names):
         pool = stack_models if h.stack else {key: [(f.name, f.model) for f in fits]
                                               for key, fits in fits_of.items()}
         models = match(pool, h)

@@ -212,7 +212,16 @@ def test_history_on_the_command_line(tmp_path, capsys):
     h2 = write_history(tmp_path / "H1960", iso.MasingRO(K0=TRUE.K0, S_y=TRUE.S_y, r=TRUE.r), fv=113.0)
     assert cli.main([str(run), "--history", str(h2), "-o", str(tmp_path / "out2")]) == 0
     assert "No single-bag cyclic run of this fabric at this load" in (tmp_path / "out2" / "isolator.md").read_text()
-    assert history  # imported for the module's presence
+    # two histories of one name in sibling folders: a figure each, named by the folders (the
+    # figure of the first was overwritten when the name came from the folder two levels up)
+    same = iso.MasingRO(K0=TRUE.K0, S_y=TRUE.S_y, r=TRUE.r)
+    ha = write_history(tmp_path / "runs-history" / "H5500", same)
+    hb = write_history(tmp_path / "runs-history-woven" / "H5500", same)
+    assert cli.main([str(run), "--history", str(ha), "--history", str(hb), "-o", str(tmp_path / "out3")]) == 0
+    figs = sorted(f.name for f in (tmp_path / "out3").glob("history-*.png"))
+    assert figs == ["history-runs-history-H5500.png", "history-runs-history-woven-H5500.png"], figs
+    assert all(r["fabric"] == "solid" for r in csv_rows(tmp_path / "out3" / "history_check.csv"))
+    assert history.figure_names(["/a/x/H1", "/b/x/H1", "/c/H2"]) == ["a-x-H1", "b-x-H1", "H2"]
 
 
 def csv_rows(path):
