@@ -44,6 +44,10 @@ def parse_args(argv):
     p.add_argument("--mur", type=float, default=PAPER["mur"], help="start / paper rolling friction")
     p.add_argument("--E", type=float, default=PAPER["E"], help="start / paper Young's modulus (Pa)")
     p.add_argument("--fit", default="mu,mur", help="parameters searched: mu,mur or mu,mur,E")
+    p.add_argument("--rolling-radius", dest="rolling_radius", choices=("effective", "mean"),
+                   default="effective", help="the rolling resistance's lever arm (pair_style "
+                   "gran/hertz/rolling rolling_radius): R* (effective, the decks') or (Ri+Rj)/2 (mean, "
+                   "YADE's Rmean)")
     p.add_argument("--grid-mu", default="0.5,0.8",
                    help="coarse grid of mu searched first (with --grid-mur); empty: no grid")
     p.add_argument("--grid-mur", default="0.1,0.25", help="coarse grid of mu_r searched first")

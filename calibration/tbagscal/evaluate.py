@@ -103,9 +103,10 @@ class Calibration:
     # ---- shear runs ---------------------------------------------------------------------
     def run_key(self, prm, p, seed=None):
         a = self.a
-        return "%s_mu%s_mur%s_I%s_strain%s_deck%s" % (self.prep_key(p, prm["E"], seed), fmt(prm["mu"]),
-                                                      fmt(prm["mur"]), fmt(a.inertial), fmt(a.strain),
-                                                      deck_hash("in.triax", "cell.inc"))
+        radius = "" if a.rolling_radius == "effective" else "_rr" + a.rolling_radius
+        return "%s_mu%s_mur%s%s_I%s_strain%s_deck%s" % (self.prep_key(p, prm["E"], seed), fmt(prm["mu"]),
+                                                        fmt(prm["mur"]), radius, fmt(a.inertial),
+                                                        fmt(a.strain), deck_hash("in.triax", "cell.inc"))
 
     def shear(self, prm, p, seed=None):
         key = self.run_key(prm, p, seed)
@@ -116,7 +117,8 @@ class Calibration:
         d = self.work / "runs" / key
         out, secs = run_deck("in.triax", d, dict(
             self.cell_vars(prm["E"]), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
-            mu=fmt(prm["mu"]), mur=fmt(prm["mur"]), inertial=fmt(self.a.inertial),
+            mu=fmt(prm["mu"]), mur=fmt(prm["mur"]), rolling_radius=self.a.rolling_radius,
+            inertial=fmt(self.a.inertial),
             strain=fmt(self.a.strain), csv="triax.csv"))
         cons, shear = summary(d, "consolidated"), summary(d, "shear")
         rec = {"csv": str(d / "triax.csv"), "seconds": secs,

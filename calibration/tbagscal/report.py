@@ -65,6 +65,10 @@ def write_report(cal, data, rows, out_dir):
                  "data eps_v range), at the data's axial strains, averaged over the pressures.\n"
                  % (a.width * 1e3, a.width * 1e3, a.height * 1e3, a.void_ratio, a.e_tol, a.inertial, a.dt,
                     a.strain * 100, W_VOL))
+        L.append("Rolling resistance: EPSD with the %s rolling radius (pair_style gran/hertz/rolling "
+                 "rolling_radius %s: %s).\n" % (a.rolling_radius, a.rolling_radius,
+                                                "R* = RiRj/(Ri+Rj), the decks' convention" if a.rolling_radius == "effective"
+                                                else "(Ri+Rj)/2, YADE's Rmean: about twice R*"))
         if len(cal.seeds()) > 1:
             L.append("Samples per pressure: %d (seeds %s). Each misfit is that of the samples' mean curve; "
                      "a peak ratio is the samples' mean +- their standard deviation.\n"

@@ -10,6 +10,7 @@ import os
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -105,6 +106,23 @@ def test_fit_runs_end_to_end_on_a_tiny_sample(tmp_path):
     again = run_fit(TINY_ARGS + ["--pressures", "0.3", "--budget", "2", "--grid-mu", "0.5",
                                  "--grid-mur", "0.1"], tmp_path)
     assert again.returncode == 0 and "run mu" not in again.stdout and "sample" not in again.stdout
+
+
+def test_rolling_radius_reaches_the_deck_and_the_report(tmp_path):
+    """--rolling-radius mean: in.triax runs pair_style ... rolling_radius mean (its log says so),
+    the report states the convention, and the run is not the cache's effective-radius run."""
+    args = TINY_ARGS + ["--pressures", "0.2", "--budget", "1", "--mu", "0.5", "--mur", "0.1", "--no-figure"]
+    eff = run_fit(args, tmp_path)
+    assert eff.returncode == 0, eff.stdout[-2000:] + eff.stderr[-2000:]
+    mean = run_fit(args + ["--rolling-radius", "mean"], tmp_path)
+    assert mean.returncode == 0, mean.stdout[-2000:] + mean.stderr[-2000:]
+    assert "run mu 0.5 mur 0.1" in mean.stdout    # not taken from the cache
+    runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
+    logs = {k: (Path(r["csv"]).parent / "in.triax.out").read_text() for k, r in runs.items()}
+    assert sorted("rolling radius mean (Ri+Rj)/2" in t for t in logs.values()) == [False, True]
+    assert "with the mean rolling radius" in (tmp_path / "report" / "report.md").read_text()
+    bad = run_fit(args + ["--rolling-radius", "twice"], tmp_path)
+    assert bad.returncode != 0 and "--rolling-radius" in bad.stderr
 
 
 def test_mean_curve_of_samples():
