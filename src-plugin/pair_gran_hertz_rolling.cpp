@@ -363,7 +363,7 @@ double PairGranHertzRolling::init_one(int i, int j)
   const double Gs = law::mix_G(Emod[i], poiss[i], Emod[j], poiss[j]);
   law::Params p = law::make_params(Es, Gs, pick(cor, "restitution"), pick(mu, "friction"),
                                    pick(mur, "rolling friction"), rolling, limit_damping);
-  p.roll_mean = roll_mean;
+  p.roll_mean = roll_mean ? 1.0 : 0.0;
   law[i * ntypes1 + j] = law[j * ntypes1 + i] = p;
 
   double cut = maxrad[i] + maxrad[j];

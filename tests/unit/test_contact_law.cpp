@@ -388,7 +388,7 @@ TEST(Rolling, NoneHasNoRollingTorque)
 namespace {
 Params with_radius(Params p, bool mean)
 {
-  p.roll_mean = mean;
+  p.roll_mean = mean ? 1.0 : 0.0;
   return p;
 }
 // torques on i and j over n steps of two equal spheres rolling on each other about y (w_j = -w_i:
