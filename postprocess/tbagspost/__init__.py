@@ -66,6 +66,23 @@ def read_columns(path, columns, maker):
     return d
 
 
+def finite_rows(d, columns, path, where=None):
+    """d without a last row that is not finite in columns (the row an interrupted run was
+    writing); stops on any other such row, naming it (where(d, k): more words on row k) and its
+    columns."""
+    import numpy as np
+
+    finite = np.all([np.isfinite(d[c]) for c in columns], axis=0)
+    if len(d) and not finite[-1]:
+        d, finite = d[:-1], finite[:-1]
+    if not finite.all():
+        k = int(np.flatnonzero(~finite)[0])
+        cols = [c for c in columns if not np.isfinite(d[c][k])]
+        fail("%s: data row %d%s has no finite %s" % (path, k + 1, " (%s)" % where(d, k) if where else "",
+                                                    ", ".join(cols)))
+    return d
+
+
 def superseded(times, tol=0.0):
     """The rows of a resumed run's CSV that a later row rewrote: a resumed deck appends from its
     checkpoint's time, so a row is superseded when some later row is at its time or earlier

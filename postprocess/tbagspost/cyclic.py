@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import fail, hysteresis, read_columns, style, superseded
+from tbagspost import fail, finite_rows, hysteresis, read_columns, style, superseded
 
 COLUMNS = ("time_s", "amp", "cycle", "ua_mm", "u_mm", "w_mm", "S_N", "Fv_N")
 LOG_AMP = re.compile(r"^AMPLITUDE (\d+) of \d+: u_a (\S+) mm, f (\S+) Hz .*peak speed (\S+) mm/s, "
@@ -31,15 +31,8 @@ def read_csv(path):
     """cyclic.csv as a structured array, rows in time order without the rows a resumed run
     superseded; stops clearly if missing, malformed or empty, or on a non-finite value (naming
     the row; only the file's last row may be cut short, by an interrupted run, and is dropped)."""
-    d = read_columns(path, COLUMNS, "inputs/in.cyclic")
-    finite = np.all([np.isfinite(d[c]) for c in COLUMNS], axis=0)
-    if len(d) and not finite[-1]:
-        d, finite = d[:-1], finite[:-1]                 # the row an interrupted run was writing
-    if not finite.all():
-        k = int(np.flatnonzero(~finite)[0])
-        cols = [c for c in COLUMNS if not np.isfinite(d[c][k])]
-        fail("%s: data row %d (time %g s, amplitude %g, cycle %g) has no finite %s" % (
-            path, k + 1, d["time_s"][k], d["amp"][k], d["cycle"][k], ", ".join(cols)))
+    d = finite_rows(read_columns(path, COLUMNS, "inputs/in.cyclic"), COLUMNS, path,
+                    lambda d, k: "time %g s, amplitude %g, cycle %g" % (d["time_s"][k], d["amp"][k], d["cycle"][k]))
     if len(d) < 2:
         fail("%s has fewer than two rows (truncated run?)" % path)
     # a resumed run restarts the time: keep a row only if every later row is later in time

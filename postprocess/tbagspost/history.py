@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import design, fail, read_columns, style, superseded
+from tbagspost import design, fail, finite_rows, read_columns, style, superseded
 from tbagspost.cyclic import RowsRun
 
 COLUMNS = ("time_s", "th_s", "chunk", "u_mm", "S_N", "Fv_N")
@@ -23,11 +23,9 @@ class HistoryRun(RowsRun):
 
     def __init__(self, path):
         self.path = Path(path)
-        d = read_columns(self.path / "history.csv", COLUMNS, "inputs/in.cyclic -var history FILE")
-        for c in COLUMNS:
-            bad = np.flatnonzero(~np.isfinite(d[c]))
-            if len(bad):
-                fail("%s: data row %d has no finite %s" % (self.path / "history.csv", bad[0] + 1, c))
+        f = self.path / "history.csv"
+        d = finite_rows(read_columns(f, COLUMNS, "inputs/in.cyclic -var history FILE"), COLUMNS, f,
+                        lambda d, k: "history time %g s" % d["th_s"][k])
         self.csv = d[~superseded(d["time_s"])]
         if len(self.csv) < 10:
             fail("%s has %d rows: too few for a history" % (self.path / "history.csv", len(self.csv)))

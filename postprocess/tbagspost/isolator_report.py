@@ -68,10 +68,8 @@ def film_stiffness(run, mu_N):
     """The film interface's stiffness before it slips (N/mm): from each amplitude's last cycle,
     the film's slip amplitude a and its loop's h_eq give D_y = a (1 - pi h / 2) (exact for an
     elastic-perfectly-plastic loop); mu_N over the median D_y of the loops that slip (h > 0.3)."""
-    from tbagspost import stack as stackmod
-
     last = {}
-    for t in stackmod.split_table(run):
+    for t in run.split:
         last[t["amp"]] = t
     d = [t["film1_mm"] * (1 - np.pi * t["film1_h_eq"] / 2) for t in last.values() if t["film1_h_eq"] > 0.3]
     return mu_N / float(np.median(d)) if d and np.median(d) > 0 else float("inf")

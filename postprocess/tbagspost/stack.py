@@ -13,6 +13,7 @@ bottom face minus the bag below's top face (below the film: film - top face; abo
 face - film); the slip fraction is the sum of the films' slip amplitudes over the plate's.
 """
 import csv
+import functools
 import re
 import sys
 from pathlib import Path
@@ -75,6 +76,11 @@ class StackRun(cyclic.CyclicRun):
         self.stack = {n: v[k] for n, v in raw.items()}
         films = LOG_FILMS.search(self.log)
         self.film_mu = (float(films.group(3)), float(films.group(4))) if films else None
+
+    @functools.cached_property
+    def split(self):
+        """split_table(self), computed once (the stack's report and its isolator model read it)."""
+        return split_table(self)
 
     @property
     def label(self):
@@ -217,7 +223,7 @@ def write(run, out, formats=("png",), dpi=None):
     """stack-split figure, stack_split.csv; returns the written paths and the report section."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    tab = split_table(run)
+    tab = run.split
     if not tab:
         fail("%s: no complete cycle" % run.path)
     written = style.save(figure(run, tab), out / ("stack-split-%s" % run.name), formats, dpi)

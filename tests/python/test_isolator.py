@@ -195,6 +195,22 @@ def test_history_check_is_exact_for_the_model_that_made_it(tmp_path):
     history.figure(run, rows)
 
 
+def test_history_reader_drops_a_cut_last_row_and_names_a_bad_one(tmp_path):
+    """The history's rows are read as cyclic.csv's (tbagspost.finite_rows): a last row an
+    interrupted run left non-finite is dropped, a non-finite row inside stops with its number."""
+    from tbagspost import history
+    h = write_history(tmp_path / "h", iso.MasingRO(K0=520.0, S_y=300.0, r=4.0))
+    f = h / "history.csv"
+    lines = f.read_text().splitlines()
+    n = len(lines) - 2
+    f.write_text("\n".join(lines + ["4.1,4.1,1,nan,0,nan,318"]) + "\n")
+    assert len(history.HistoryRun(h).csv) == n
+    lines[100] = lines[100].split(",", 5)[0] + ",0.1,1,0.5,0,nan,318"
+    f.write_text("\n".join(lines) + "\n")
+    with pytest.raises(SystemExit, match=r"data row 99 \(history time 0.1 s\) has no finite S_N"):
+        history.HistoryRun(h)
+
+
 def test_history_on_the_command_line(tmp_path, capsys):
     """Cyclic runs of known Masing loops (test_cyclic_post) and a history of the same model: the
     R-O/Masing fit predicts the history within 2 % of its peak; history_check.csv is written."""
