@@ -287,10 +287,10 @@ TBAGS_INLINE void tangential_force(const Params &p, const vec::V3 &n, const vec:
   o.fs = fs;
 }
 
-// EPSD rolling history (stage 5, when the history is integrated): rotated onto the tangent plane and integrated
-// with the rolling velocity R_r (w_i - w_j) x n (rr = R_r, rolling_radius()) where rolling acts (p.mur > 0; ALLON: known), else
-// left as it was. FAST: as tangential_history() (returns whether the exact rotation was needed
-// where rolling acts).
+// EPSD rolling history (stage 5, when the history is integrated): rotated onto the tangent plane
+// and integrated with the rolling velocity R_r (w_i - w_j) x n (rr = R_r, rolling_radius()) where
+// rolling acts (p.mur > 0; ALLON: known), else left as it was. FAST: as tangential_history()
+// (returns whether the exact rotation was needed where rolling acts).
 template <bool ALLON = false, bool FAST = false>
 TBAGS_INLINE bool rolling_history(const Params &p, const vec::V3 &n, double a, double fncrit,
                                   double rr, const vec::V3 &wi, const vec::V3 &wj, double dt,
@@ -307,9 +307,9 @@ TBAGS_INLINE bool rolling_history(const Params &p, const vec::V3 &n, double a, d
 
 // Rolling resistance (stage 6; ROLL not ROLLING_NONE) from n, a, fncrit = |F_n| and, for
 // EPSD, the integrated history hr (rolling_history()): the rolling pseudo-force fr and the
-// torque troll = R_r n x fr (rr = R_r, rolling_radius(); i gets +troll, j -troll); EPSD: the cap |fr| <= mu_r |F_n| (hr
-// rescaled to it); CDT: |fr| = mu_r |F_n| against the rolling velocity. on: rolling acts
-// (p.mur > 0), else fr and troll are zero and hr is left as it was.
+// torque troll = R_r n x fr (rr = R_r, rolling_radius(); i gets +troll, j -troll); EPSD: the
+// cap |fr| <= mu_r |F_n| (hr rescaled to it); CDT: |fr| = mu_r |F_n| against the rolling
+// velocity. on: rolling acts (p.mur > 0), else fr and troll are zero and hr is left as it was.
 template <int ROLL, bool ALLON = false>
 TBAGS_INLINE void rolling_force(const Params &p, const vec::V3 &n, double a, double fncrit,
                                 double rr, const vec::V3 &wi, const vec::V3 &wj, vec::V3 &hr,
