@@ -169,7 +169,8 @@ TBAGS_INLINE void effective_frozen(double mi_signed, double mj_signed, double ra
 // k_s R_r^2. R* (EPSD as Ai et al. 2011, LAMMPS's rolling sds) or, p.roll_mean, the mean radius
 // (R_i + R_j)/2 (YADE's Mindlin law with its Rmean): twice R* for equal spheres, where it is the
 // law of R* with twice mu_r (k_s grows with mu_r^2). A plate has no radius: R_r = R_i (= R*) there.
-TBAGS_INLINE double rolling_radius(const Params &p, double reff, double radi, double radj, bool wall)
+TBAGS_INLINE double rolling_radius(const Params &p, double reff, double radi, double radj,
+                                   bool wall)
 {
   const double mean = 0.5 * (radi + radj);
   return (p.roll_mean > 0.0 && !wall) ? mean : reff;
