@@ -500,8 +500,8 @@ void *PairGranHertzRolling::extract(const char *str, int &dim)
 /* ---------------------------------------------------------------------- */
 
 // restart settings: the rolling model plus SETTINGS_V3 marks the record that also holds the kernel
-// choice, the contact skin and the rolling radius; SETTINGS_V2 the kernel and skin only (tbags
-// 0.4 to 0.6); files of tbags 0.3 and before hold the model and limit_damping only
+// choice, the contact skin and the rolling radius; SETTINGS_V2 the kernel and skin only (before
+// rolling_radius); files of tbags 0.3 and before hold the model and limit_damping only
 static constexpr int SETTINGS_V2 = 16;
 static constexpr int SETTINGS_V3 = 32;
 
