@@ -8,7 +8,9 @@ shear.py    the preset workflow: bag, fill, the preset's runs (side by side wher
 stages.py   one stage (a deck run in its folder): made once and reused, or stamped and continued
             on --resume (resume.py: finished runs, checkpoints, the CSV merged); its progress
             on the console (progress.py)
-estimate.py the paper preset's time estimate and scaling model
+states.py   committed states of long stages (states/: the paper bag's fill), restored by
+            stage_once instead of running the stage
+estimate.py the paper preset's time estimate (tbagspost.project_time runs the projection)
 liggghts_stage.py  a shear run in LIGGGHTS (--engine liggghts), written as in.shear's CSV
 cli.py      `python3 -m tbagsrun shear ...` (__main__.py), what `./tbags shear` runs: arguments,
             set-up, then shear.py

@@ -1,5 +1,5 @@
 """The paper preset's estimate (./tbags shear paper --estimate): its run's cost measured on its own
-bag, projected over the whole run and over rank counts (inputs/project_time.py, inputs/scaling.py).
+bag, projected over the whole run and over rank counts (postprocess/tbagspost: project_time.py, scaling.py).
 """
 import os
 import shutil
@@ -8,7 +8,7 @@ from pathlib import Path
 
 from . import ROOT, LaunchError, resume
 from .presets import DECOMPOSITIONS, ESTIMATE
-from .stages import made_part, run_script, stage, stage_once
+from .stages import made_part, run_module, stage, stage_once
 
 
 def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
@@ -18,7 +18,7 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
     rest of the compression and a short shear to a checkpoint (estimate/state), each made once; then a short
     stretch resumed from the checkpoint at 1, 2 and `ranks` ranks (estimate/np<P>) and a few steps
     at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
-    scaling model); then the projection (inputs/project_time.py). reuse: an earlier projection
+    scaling model); then the projection (tbagspost/project_time.py). reuse: an earlier projection
     is said again instead of timing anew."""
     sys.path.insert(0, str(ROOT / "postprocess"))
     from tbagspost.run import log_timestep    # the decks' TIMESTEP line (numpy: after set-up)
@@ -54,5 +54,5 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
         sub = folder / "decomp" / ("np%d" % r)
         shutil.rmtree(sub, ignore_errors=True)
         stage(sub, "shear", r, dict(shear, restart="../../state/" + restart, steps=5, du_dump=1), quiet)
-    if not run_script("project_time.py", [folder, "--ranks", ranks], say)[0]:
+    if not run_module("project_time", [folder, "--ranks", ranks, "--shared", part[3]["compress_to"] if part else 0], say)[0]:
         raise LaunchError("paper: the projection failed (above)")

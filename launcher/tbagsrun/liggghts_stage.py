@@ -8,13 +8,13 @@ from .stages import report, run_python
 
 
 def stage_liggghts(folder, ranks, variables, say):
-    """inputs/liggghts/in.shear in folder: the run's LAMMPS fill converted (convert_fill.py), then
+    """inputs/liggghts/in.shear in folder: the run's LAMMPS fill converted (tbagspost/liggghts_fill.py), then
     LIGGGHTS on `ranks` ranks (split across x, through the bag), then shear.csv (in.shear's
     columns) from its means and per-step trace (deleted unless -var trace 1); stops if it
     fails."""
     folder = Path(folder)
     say("tbags shear: shear (LIGGGHTS) in %s ..." % folder)
-    ok, err = run_python([ROOT / "inputs" / "liggghts" / "convert_fill.py",
+    ok, err = run_python(["-m", "tbagspost.liggghts_fill",
                           folder / str(variables.get("fill", "fill.data")), folder / "fill.liggghts.data"],
                          stdout=subprocess.DEVNULL)
     if not ok:

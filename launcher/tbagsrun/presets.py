@@ -15,7 +15,7 @@ LOADS = (5500, 3730, 1960)    # the paper's three vertical loads (N on its 395 x
 COMPRESS_SHARED = 0.9
 DEMO_BAG = dict(nx=21, ny=21, nz=7)
 # the presets that reproduce the paper run the fabric that reproduces its findings best (the
-# evidence table in inputs/results/README.md); the design presets run both (DESIGN_FABRICS)
+# evidence table in results/README.md); the design presets run both (DESIGN_FABRICS)
 PAPER_FABRIC = {"fabric": "fabric solid (the paper's solid-bond cage, which reproduces its findings best; "
                           "-var fabric woven for a woven bag that carries no compression: ./tbags fabric)"}
 DESIGN_FABRICS = ("solid", "woven")
@@ -40,7 +40,7 @@ class Preset:
     runs: tuple
     side_by_side: bool               # the runs at once, the ranks shared among them
     post: str                        # "figures" (S-u, shape, network, ParaView), "cyclic", "stack"
-    check: str = ""                  # "trends", "speed" (inputs/check_trends.py)
+    check: str = ""                  # "trends", "speed" (tbagspost/check_trends.py)
     defaults_said: dict = field(default_factory=dict)    # variable -> line printed when it is the preset's
     realizations: bool = True        # --realizations offered (not for runs of hours or days)
     estimate: bool = False           # measures a short stretch first and projects the time
@@ -64,7 +64,7 @@ PRESETS = {p.name: p for p in (
            help="28 x 28 x 7 bag, the paper's plan-to-height ratio (inner 130 x 130 x 25 mm, 5.2; the "
                 "paper's 395 x 395 x 75 mm, 5.27), at the three loads (5.50, 3.73, 1.96 kN scaled by "
                 "plan area; side by side), 10 mm/s to 5 mm, the paper's 20 % shear strain (inertial "
-                "number 9e-4 at 1.96 kN), then inputs/check_trends.py asserts the paper's findings; "
+                "number 9e-4 at 1.96 kN), then tbagspost/check_trends.py asserts the paper's findings; "
                 "with --realizations N in every realization. -> runs/trends/"),
     Preset("quasistatic", "quasistatic", TRENDS_BAG,
            tuple(Run("v%g" % v, "shear", dict(Fpaper=1960, v=v, ufinal=0.005)) for v in (0.01, 0.005)),

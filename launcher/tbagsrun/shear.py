@@ -3,7 +3,7 @@
 One realization: the bag (inputs/in.bag) and its fill (in.fill) in the output folder, then the
 preset's runs from that fill (side by side, the ranks shared, or one after the other), each a
 LAMMPS stage with its log (log.<deck>) and screen output (screen.<deck>.txt) in its folder; then
-the figures (postprocess/tbagspost) and the preset's checks (inputs/check_trends.py).
+the figures (postprocess/tbagspost) and the preset's checks (tbagspost/check_trends.py).
 Realizations: the same with fills of seeds S, S + 1, ... in r1, r2, ..., as many at once as the
 cores allow, then their spread (tbagspost --realizations).
 The paper preset first measures a short stretch of its own bag and projects its time and its
@@ -20,7 +20,7 @@ from . import LaunchError, guard
 from .estimate import estimate_paper
 from .liggghts_stage import stage_liggghts
 from .presets import COMPRESS_SHARED, Run
-from .stages import run_python, run_script, stage_once, stage_run, vars_key
+from .stages import run_module, run_python, stage_once, stage_run, vars_key
 
 
 def side_by_side(jobs, say):
@@ -201,7 +201,7 @@ def check(preset, out, say, in_realizations):
     if not preset.check:
         return
     args = [out] if preset.check == "trends" else ["--speed"] + [run_folder(out, r) for r in preset.runs]
-    ok, _ = run_script("check_trends.py", args, say)
+    ok, _ = run_module("check_trends", args, say)
     if not ok:
         if preset.check == "speed":
             raise LaunchError("quasistatic: the S-u curves differ (above)")
@@ -254,7 +254,7 @@ def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps", re
     say("tbags shear %s: %d realizations done in %d s; spread in %s/realizations/"
         % (preset.name, n, time.time() - t0, out))
     if preset.check == "trends":
-        ok, text = run_script("check_trends.py", [out], say)
+        ok, text = run_module("check_trends", [out], say)
         (out / "realizations" / "check.txt").write_text(text)
         if not ok:
             raise LaunchError("trends: a finding did not hold in a realization (above; "

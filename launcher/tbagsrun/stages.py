@@ -1,7 +1,7 @@
 """One stage of a preset: a LAMMPS deck run in its folder under mpirun, its summary lines said,
 its progress on the console (progress.py); a stage made once and reused (stage_once), a preset's
 run stamped with its variables and continued on --resume (stage_run, resume.py); the folders the
-launcher makes (fresh_dir) and the Python it runs (run_python, run_script).
+launcher makes (fresh_dir) and the Python it runs (run_python, run_module).
 """
 import json
 import os
@@ -11,7 +11,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from . import ROOT, LaunchError, lammps, progress, resume as resumed
+from . import ROOT, LaunchError, lammps, progress, resume as resumed, states
 
 # the lines of a stage's screen output that the launcher repeats (the decks' summaries)
 SUMMARY = re.compile(r"^(BAG|FILL|FABRIC|PRESSED|TIMESTEP|INERTIAL|COMPRESSION PART|COMPRESSED|SHEARED|CYCLIC|CYCLED|AMPLITUDE [0-9]+ DONE)")
@@ -20,19 +20,23 @@ PROGRESS_DEFAULT = 30    # s between a stage's progress lines at least (--progre
 PROGRESS_EVERY = PROGRESS_DEFAULT
 
 
+def post_env():
+    """The environment with postprocess/ (tbagspost) first on PYTHONPATH."""
+    return dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "postprocess")] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
+
+
 def run_python(args, stdout=None):
     """Debian's Python on a module or script of the repository, postprocess/ on its path."""
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-        [str(ROOT / "postprocess")] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
-    proc = subprocess.run([sys.executable] + [str(a) for a in args], env=env, stdout=stdout,
+    proc = subprocess.run([sys.executable] + [str(a) for a in args], env=post_env(), stdout=stdout,
                           stderr=subprocess.PIPE, text=True)
     return proc.returncode == 0, proc.stderr
 
 
-def run_script(name, args, say):
-    """inputs/<name> (a check or a projection) on args; says its output; (succeeded, stdout)."""
-    proc = subprocess.run([sys.executable, ROOT / "inputs" / name] + [str(a) for a in args],
-                          capture_output=True, text=True)
+def run_module(name, args, say):
+    """tbagspost.<name> (a check or a projection) on args; says its output; (succeeded, stdout)."""
+    proc = subprocess.run([sys.executable, "-m", "tbagspost." + name] + [str(a) for a in args],
+                          env=post_env(), capture_output=True, text=True)
     for line in (proc.stdout + proc.stderr).splitlines():
         say(line)
     return proc.returncode == 0, proc.stdout
@@ -93,9 +97,12 @@ def fresh_dir(folder):
 
 def stage_once(folder, deck, ranks, variables, say, product):
     """stage(), unless an earlier call made `product` in folder with the same variables (a stamp
-    beside it), so that a long stage that finished is not run again."""
+    beside it) or a committed state (states.py) holds it, so that a long stage that finished is
+    not run again."""
     stamp = Path(folder) / (".%s.vars" % deck)
     key = vars_key(variables)
+    if not (Path(folder) / product).is_file():
+        states.restore(folder, deck, key, product, say)
     if (Path(folder) / product).is_file() and stamp.is_file() and stamp.read_text() == key:
         say("tbags shear: %s in %s: done before, reused" % (deck, folder))
         return

@@ -53,7 +53,7 @@ def compare(figures):
 def report(fa, fb, cyc, ro):
     lines = ["# The isolator's properties with two bag fabrics: %s and %s" % (fa, fb), "",
              "The fabric decides how much of the load the bag's walls carry (./tbags fabric, "
-             "inputs/results/README.md): the paper leaves it open, so the ratio %s/%s is the model's "
+             "results/README.md): the paper leaves it open, so the ratio %s/%s is the model's "
              "uncertainty from it. Design with the range, or settle it with the bag's vertical "
              "stiffness under load in the laboratory." % (fb, fa), "",
              "## Ramberg-Osgood parameters", "",

@@ -2,7 +2,7 @@
 filled (seed 4821) and sheared with the preset's protocol (5.5 kN's stress, F_v 318.14 N, 15 mm/s
 to 5 mm) on 1 rank (the suite makes it once, ctest fixture "demo", for this test and
 test_liggghts_demo.py). The figures it reports, measured as tbagspost.realizations measures them,
-must fall inside the spread of the committed realizations (inputs/results/demo-realizations.csv,
+must fall inside the spread of the committed realizations (results/demo-realizations.csv,
 six fills: S at 5 mm 551 +- 17 N, contraction 0.156 +- 0.008 mm): within 3 standard
 deviations of their mean, at least the half-range of the fills plus 5 % of the mean; F_v
 within 0.5 % of its target; no yarn breaks. A change of physics that moves the result by more
@@ -22,7 +22,7 @@ INPUTS = lmprun.INPUTS
 
 
 def committed_spread():
-    with open(INPUTS / "results" / "demo-realizations.csv") as fh:
+    with open(lmprun.ROOT / "results" / "demo-realizations.csv") as fh:
         rows = list(csv.DictReader(fh))
     return {k: np.array([float(r[k]) for r in rows]) for k in ("S_5mm_N", "contraction_mm", "S_peak_N")}
 

@@ -1,4 +1,4 @@
-"""The tiny filled bag of the LAMMPS decks in LIGGGHTS: converted by inputs/liggghts/convert_fill.py
+"""The tiny filled bag of the LAMMPS decks in LIGGGHTS: converted by postprocess/tbagspost/liggghts_fill.py
 (the same numbers), modelled by inputs/liggghts/model.lig (contact model tbags, bpm/yarn, plates,
 gravity) and run for a few hundred steps pressed between two fixed plates, against the same run
 in LAMMPS (pair gran/hertz/rolling, bpm/yarn, fix wall/gran/servo): every particle's force,

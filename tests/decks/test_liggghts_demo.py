@@ -4,7 +4,7 @@ test_demo.py checks to 5 mm) and LIGGGHTS's inputs/liggghts/in.shear, compressed
 and sheared to u = 1 mm. A run from one packing is one sample, and two engines that compute the
 same law to round-off still part ways in a packing, so their results must agree as two samples
 of one packing could: within the spread that different packings (realizations) give at 1 mm, as
-measured and committed in inputs/results/demo-realizations-by-u.csv (6 fills: S and w at the rows
+measured and committed in results/demo-realizations-by-u.csv (6 fills: S and w at the rows
 u = 0.95, 1.95, ... 4.95 mm). Checked: S and w (from the start of shear) at the row u = 0.95 mm within 2 standard deviations of
 that spread, and F_v held within 1 % in both. LIGGGHTS runs 4.4 times slower than LAMMPS: the
 whole 5 mm (7 min) made this the suite's longest test; 1 mm keeps the compression, the servo's
@@ -27,7 +27,7 @@ ROW = 0.95  # mm, its last CSV row (the mean over 0.9-1.0 mm), where the engines
 
 def spread_at(u_mm):
     """Standard deviation over the committed demo realizations of S and w at u_mm."""
-    with open(lmprun.ROOT / "inputs" / "results" / "demo-realizations-by-u.csv") as fh:
+    with open(lmprun.ROOT / "results" / "demo-realizations-by-u.csv") as fh:
         rows = [r for r in csv.DictReader(line for line in fh if not line.startswith("#"))
                 if abs(float(r["u_mm"]) - u_mm) < 1e-3]
     assert len(rows) >= 3

@@ -175,7 +175,9 @@ run {steps}
 
 
 def convert(fill, out):
-    """inputs/liggghts/convert_fill.py: a LAMMPS fill as a LIGGGHTS data file."""
+    """tbagspost/liggghts_fill.py: a LAMMPS fill as a LIGGGHTS data file."""
+    import os
     import subprocess
-    subprocess.run([sys.executable, str(lmprun.ROOT / "inputs" / "liggghts" / "convert_fill.py"),
-                    str(fill), str(out)], check=True, capture_output=True)
+    env = dict(os.environ, PYTHONPATH=str(lmprun.ROOT / "postprocess"))
+    subprocess.run([sys.executable, "-m", "tbagspost.liggghts_fill", str(fill), str(out)], check=True,
+                   capture_output=True, env=env)

@@ -1,16 +1,15 @@
-"""inputs/check_trends.py on synthetic runs: passes when the paper's trends are there, fails the
+"""postprocess/tbagspost/check_trends.py on synthetic runs: passes when the paper's trends are there, fails the
 right check when one is missing, and compares two speeds' S-u curves."""
-import importlib.util
 import os
+import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
-spec = importlib.util.spec_from_file_location("check_trends", ROOT / "inputs" / "check_trends.py")
-ct = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(ct)
+sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost import check_trends as ct  # noqa: E402
 
 DT, STEP = 2e-6, 5000
 U = np.linspace(0, 7, 71)

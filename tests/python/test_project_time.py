@@ -1,6 +1,5 @@
-"""inputs/project_time.py: the projection of the paper-size run from measured loop times, checked
+"""postprocess/tbagspost/project_time.py: the projection of the paper-size run from measured loop times, checked
 against a hand computation on synthetic logs; missing or truncated logs give a clear message."""
-import importlib.util
 import os
 import re
 import sys
@@ -9,9 +8,10 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
-spec = importlib.util.spec_from_file_location("project_time", ROOT / "inputs" / "project_time.py")
-pt = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(pt)
+sys.path.insert(0, str(ROOT / "postprocess"))
+from tbagspost import project_time as pt  # noqa: E402
+sys.path.insert(0, str(ROOT / "launcher"))
+from tbagsrun.presets import COMPRESS_SHARED  # noqa: E402  (what the launcher passes as --shared)
 
 LOOP = "Loop time of %g on %d procs for %d steps with %d atoms\n"
 TIMESTEP = "TIMESTEP: Rayleigh 1.1e-05 s, bond 7.8e-06 s; using %g s\n"
@@ -40,16 +40,16 @@ def test_counts_match_the_decks():
 
 def test_timestep_from_the_run(tmp_path):
     est = make(tmp_path, dt=1e-6)
-    r = pt.project(est, ranks=1)
+    r = pt.project(est, ranks=1, fraction=COMPRESS_SHARED)
     assert r["dt"] == 1e-6 and r["shear_steps"] == pytest.approx(0.015 / (0.004 * 1e-6))
     log = est / "state" / "log.shear"
     log.write_text(log.read_text().replace("TIMESTEP", "TIME"))
     with pytest.raises(SystemExit, match="no TIMESTEP line"):
-        pt.project(est, ranks=1)
+        pt.project(est, ranks=1, fraction=COMPRESS_SHARED)
 
 
 def test_projection_by_hand(tmp_path):
-    r = pt.project(make(tmp_path), ranks=4)
+    r = pt.project(make(tmp_path), ranks=4, fraction=COMPRESS_SHARED)
     atoms = 17922 + 97130
     assert r["atoms"] == atoms and r["fill_steps"] == 60000 and r["comp_steps"] == 39000
     steps_load = 39000 * 15 / 5 + 0.015 / (0.004 * 2e-6)
@@ -74,7 +74,7 @@ def test_shared_compression_counted_once(tmp_path):
     head = "   Step Time v_Fmeas v_w f_top[9] v_conv CPULeft\n"
     log.write_text(log.read_text().replace("Loop time of 50", head + rows + "Loop time of 50", 1))
     assert pt.shared_steps(log, 0.9 * lightest) == 10000
-    r = pt.project(est, ranks=2)
+    r = pt.project(est, ranks=2, fraction=COMPRESS_SHARED)
     assert r["shared"] == 10000 and r["shared_paper"] == 30000
     steps_load = (39000 - 10000) * 15 / 5 + 0.015 / (0.004 * 2e-6)
     row = {p: row for p, *row in r["rows"]}[2]
@@ -92,21 +92,21 @@ def test_shared_part_counted_from_its_own_log(tmp_path):
     log = est / "state" / "log.shear"
     log.write_text("read_restart    ../../compress/compress.restart\n" + log.read_text())
     with pytest.raises(SystemExit, match="continued from a shared part, but there is no"):
-        pt.project(est, ranks=2)
+        pt.project(est, ranks=2, fraction=COMPRESS_SHARED)
     (tmp_path / "compress").mkdir()
     (tmp_path / "compress" / "log.shear").write_text(LOOP % (40, 2, 30000, 3156))
-    r = pt.project(est, ranks=2)
+    r = pt.project(est, ranks=2, fraction=COMPRESS_SHARED)
     assert r["comp_steps"] == 69000 and r["shared"] == 30000 and r["shared_paper"] == 90000
     assert pt.total_steps(r) == 60000 + 90000 + 3 * (39000 * 3 + 0.015 / (0.004 * 2e-6))
 
 
 def test_missing_and_truncated(tmp_path):
     with pytest.raises(SystemExit, match="no bag.json and no BAG line"):
-        pt.project(tmp_path / "estimate", 1)
+        pt.project(tmp_path / "estimate", 1, COMPRESS_SHARED)
     est = make(tmp_path)
     (est / "state" / "log.shear").write_text(TIMESTEP % 2e-6 + "LAMMPS (4 Feb 2025)\n")
     with pytest.raises(SystemExit, match="no completed run"):
-        pt.project(est, 1)
+        pt.project(est, 1, COMPRESS_SHARED)
 
 
 SECTIONS = """
@@ -129,7 +129,7 @@ Neighs:         {nei} ave  {neimax} max  {nei} min
 def test_scaling_model_on_a_checkpoint(tmp_path):
     """The model's costs come from the 1- and 2-rank stretches' sections and counts; the
     decomposition runs' statistics are checked against the counts (a lattice of touching spheres
-    as the checkpoint: inputs/scaling.py's test has its hand counts)."""
+    as the checkpoint: postprocess/tbagspost/scaling.py's test has its hand counts)."""
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from test_scaling import lattice
     est = make(tmp_path, costs={1: 1e-6, 2: 0.6e-6})
@@ -145,7 +145,7 @@ def test_scaling_model_on_a_checkpoint(tmp_path):
     d.mkdir(parents=True)
     (d / "log.shear").write_text("  2 by 2 by 1 MPI processor grid\n" + LOOP % (1.0, 4, 5, 128) + SECTIONS.format(
         pair=1, bond=1, comm=1, comm_avg=1, nloc=32, ngh=40, nei=72, neimax=80))
-    r = pt.project(est, ranks=2)
+    r = pt.project(est, ranks=2, fraction=COMPRESS_SHARED)
     m = pt.model(est, r)
     c = m["costs"]
     assert c["c_pair"] == pytest.approx(2.88 / steps / 288) and c["c_bond"] == pytest.approx(0.64 / steps / 64)

@@ -1,6 +1,5 @@
-"""inputs/scaling.py: LAMMPS's processor grid, the per-rank counts of a decomposition and the
+"""postprocess/tbagspost/scaling.py: LAMMPS's processor grid, the per-rank counts of a decomposition and the
 model's step time, against hand counts on a lattice of touching spheres; the data-file reader."""
-import importlib.util
 import math
 import os
 import sys
@@ -13,9 +12,7 @@ ROOT = Path(os.environ.get("TBAGS_ROOT", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(ROOT / "postprocess"))
 from tbagspost.datafile import DataFile  # noqa: E402
 
-spec = importlib.util.spec_from_file_location("scaling", ROOT / "inputs" / "scaling.py")
-sc = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(sc)
+from tbagspost import scaling as sc  # noqa: E402
 
 A = 0.005    # lattice spacing = diameter: neighbours touch, diagonals (7.07 mm) are beyond r_i + r_j + skin
 

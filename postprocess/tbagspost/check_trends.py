@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Check the paper's findings (Panganiban et al. 2025, Part 2) on the runs of `./tbags shear trends`.
 
-usage: /usr/bin/python3 inputs/check_trends.py TRENDS_DIR    (F5500/, F3730/, F1960/ inside, or
+usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.check_trends TRENDS_DIR    (F5500/, F3730/, F1960/ inside, or
                                                               realizations r1/, r2/, ... each with them)
-       /usr/bin/python3 inputs/check_trends.py --speed RUN_A RUN_B [--tol 0.1]
+       PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.check_trends --speed RUN_A RUN_B [--tol 0.1]
 
 Each finding is asserted in every realization, with a threshold that says how strongly it must
 hold (H: the sand height, (nz - 2) x 5 mm, from the run's log):
@@ -28,9 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-from tbagspost.dumps import read_contacts, read_grains    # noqa: E402  (the project's dump readers)
-from tbagspost.run import bag_size, log_timestep    # noqa: E402
+from .dumps import read_contacts, read_grains    # the project's dump readers
+from .run import bag_size, log_timestep
 
 LOADS = (5500, 3730, 1960)
 RISE, W_MIN, DETACH, EDGE = 1.1, 0.001, 0.10, 1.2

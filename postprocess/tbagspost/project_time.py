@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Projected wall time of the paper-size simple shear protocol from a measured short stretch of
-its own bag, and the scaling model over ranks (inputs/scaling.py).
+its own bag, and the scaling model over ranks (scaling.py).
 
-usage: /usr/bin/python3 inputs/project_time.py ESTIMATE_DIR [--ranks N]
+usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.project_time ESTIMATE_DIR --shared F [--ranks N]
 
 ESTIMATE_DIR is the `./tbags shear paper --estimate` layout: the bag's and fill's logs in its
 parent folder (the paper run's own), state/ (compression and a short shear to a checkpoint:
@@ -14,7 +14,7 @@ paper's bag itself, the factor is 1). Assumptions, printed with the table: the f
 per particle-step than shearing (its grains grow from half size); compression takes the measured
 number of steps (times the ratio of sand heights on a smaller bag), of which the loads share those
 before the force first reaches the shared fraction of the smallest load (./tbags shear runs that
-part once, launcher/tbagsrun/presets.py COMPRESS_SHARED: the part's own steps, compress/log.shear
+part once, to the fraction F of the smallest load that the launcher passes as --shared: the part's own steps, compress/log.shear
 beside the estimate, when the checkpoint continued from it; else from the checkpoint's thermo
 output, every 2,000 steps, the last row below it); shearing takes u_final / (v dt) steps per load
 (dt of the measured run).
@@ -25,13 +25,9 @@ import re
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "launcher"))
-import scaling  # noqa: E402
-from tbagsrun.presets import COMPRESS_SHARED  # noqa: E402
-from tbagspost.datafile import DataFile  # noqa: E402
-from tbagspost.run import bag_size, log_timestep, loops, read_csv  # noqa: E402
+from . import scaling
+from .datafile import DataFile
+from .run import bag_size, log_timestep, loops, read_csv
 
 # the paper's protocol (doc/tbags_model.rst section 4)
 PAPER = dict(nx=81, ny=81, nz=17, loads=(5500, 3730, 1960), v=0.004, ufinal=0.015)
@@ -82,10 +78,10 @@ def shared_steps(log, force):
     return below
 
 
-def compression(est_dir, nx, ny):
+def compression(est_dir, nx, ny, fraction):
     """(steps of the estimate's compression, of which the loads share): the shared part's own run
     (compress/log.shear beside the estimate) when the checkpoint continued from it, else the
-    checkpoint's steps before its force reached the shared fraction of the smallest load (scaled
+    checkpoint's steps before its force reached `fraction` of the smallest load (scaled
     to this bag's plan)."""
     state_log = est_dir / "state" / "log.shear"
     steps = runs(state_log)[0]["steps"]
@@ -97,7 +93,7 @@ def compression(est_dir, nx, ny):
         shared = runs(part_log)[0]["steps"]
         return steps + shared, shared
     lightest = min(PAPER["loads"]) * (nx - 2) * (ny - 2) / (PAPER["nx"] - 2) / (PAPER["ny"] - 2)
-    return steps, min(shared_steps(state_log, COMPRESS_SHARED * lightest), steps)
+    return steps, min(shared_steps(state_log, fraction * lightest), steps)
 
 
 def bag_particles(nx, ny, nz):
@@ -129,7 +125,8 @@ def wall_per_step(xs):
     return sum(x["loop"] for x in xs) / sum(x["steps"] for x in xs)
 
 
-def project(est_dir, ranks):
+def project(est_dir, ranks, fraction):
+    """The projection; fraction: of the smallest load's F_v, where the loads' shared compression ends."""
     est_dir = Path(est_dir)
     size = bag_size(est_dir, est_dir.parent)
     if size is None:
@@ -138,7 +135,7 @@ def project(est_dir, ranks):
     fill_log = next((f for f in (est_dir / "log.fill", est_dir.parent / "log.fill") if f.is_file()),
                     est_dir.parent / "log.fill")
     fill_steps = sum(x["steps"] for x in runs(fill_log))
-    comp_steps, shared = compression(est_dir, nx, ny)
+    comp_steps, shared = compression(est_dir, nx, ny, fraction)
     dt = timestep(est_dir / "state" / "log.shear")
     timed = measured(est_dir)
     cost = {p: wall_per_step(xs) / xs[0]["atoms"] for p, xs in timed.items()}
@@ -155,12 +152,12 @@ def project(est_dir, ranks):
         rows.append((p, c, p not in cost, (fill_steps + shared_paper) * atoms * c / 3600,
                      steps_per_load * atoms * c / 3600))
     return dict(size=(nx, ny, nz), atoms=atoms, fill_steps=fill_steps, comp_steps=comp_steps, dt=dt,
-                comp_paper=comp_paper, shared=shared, shared_paper=shared_paper, shear_steps=shear_steps,
+                comp_paper=comp_paper, shared=shared, fraction=fraction, shared_paper=shared_paper, shear_steps=shear_steps,
                 rows=rows, timed=timed)
 
 
 def model(est_dir, projection):
-    """The scaling model (inputs/scaling.py) on the checkpoint's decomposition: costs from the 1-
+    """The scaling model (postprocess/tbagspost/scaling.py) on the checkpoint's decomposition: costs from the 1-
     and 2-rank stretches, counts at MODEL_RANKS, checked against decomp/np<P>; None without the
     2-rank stretch or the checkpoint's data file."""
     est_dir = Path(est_dir)
@@ -214,7 +211,7 @@ def report(r, m=None):
            "(sand height ratio) = %.0f, of which %.0f shared by the loads (run once, with the fill: "
            "to %g of the smallest load), shear %.0f per load (dt %g s)"
            % (nx, ny, nz, r["fill_steps"], r["comp_steps"], (PAPER["nz"] - 2) / (nz - 2), r["comp_paper"],
-              r["shared_paper"], COMPRESS_SHARED, r["shear_steps"], r["dt"]),
+              r["shared_paper"], r["fraction"], r["shear_steps"], r["dt"]),
            "%6s %22s %22s %14s %12s" % ("ranks", "us per particle-step", "fill + shared part (h)", "per load (h)",
                                           "total (h)")]
     for p, c, extrapolated, fill_h, load_h in r["rows"]:
@@ -229,7 +226,7 @@ def report(r, m=None):
 
 def model_report(m):
     c = m["costs"]
-    out = ["", "Scaling model (inputs/scaling.py): per-rank counts of LAMMPS's brick decomposition of "
+    out = ["", "Scaling model (tbagspost/scaling.py): per-rank counts of LAMMPS's brick decomposition of "
            "the checkpoint, costs measured here (ns): %.1f per neighbour pair, %.1f per bond, %.1f per "
            "atom (the rest), %.1f per ghost (2-rank communication); %s"
            % (c["c_pair"] * 1e9, c["c_bond"] * 1e9, c["c_atom"] * 1e9, c["c_ghost"] * 1e9, scaling.NETWORK_TEXT),
@@ -256,10 +253,12 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("estimate_dir")
     ap.add_argument("--ranks", type=int, default=1, help="also project for this many ranks")
+    ap.add_argument("--shared", type=float, required=True,
+                    help="the fraction of the smallest load's F_v the loads' compression shares (0: none)")
     a = ap.parse_args(argv)
     if a.ranks < 1:
         raise SystemExit("project_time: --ranks must be >= 1")
-    r = project(a.estimate_dir, a.ranks)
+    r = project(a.estimate_dir, a.ranks, a.shared)
     text = report(r, model(a.estimate_dir, r))
     print(text)
     (Path(a.estimate_dir) / "projection.txt").write_text(text + "\n")

@@ -1,5 +1,5 @@
 """The paper bag's work per MPI rank under LAMMPS's domain decomposition, and the cluster scaling
-model built on it (./tbags shear paper --estimate; inputs/project_time.py prints it).
+model built on it (./tbags shear paper --estimate; project_time.py prints it).
 
 Counts. LAMMPS splits the box into a Px x Py x Pz grid of equal bricks, the grid of least
 sub-domain surface (procmap.cpp's rule, redone here: grid()); a rank owns the atoms in its brick

@@ -1,17 +1,14 @@
-#!/usr/bin/python3
 """A filled bag of the LAMMPS decks (write_data, atom style bpm/sphere) as a LIGGGHTS data file
 (atom_style hybrid granular molecular), the same numbers to the bit; atom types 1 (bag) and 2
 (sand) as in LAMMPS, and a third type declared for the plates. The box is widened by 20 mm on
 each side in x and y: LIGGGHTS keeps a mesh (the top plate, which moves sideways by u) inside
 the box, and the plate must still cover the bag at the end of the shear.
 
-    /usr/bin/python3 inputs/liggghts/convert_fill.py fill.data fill.liggghts.data
+    PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.liggghts_fill fill.data fill.liggghts.data
 """
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
-from tbagspost.datafile import DataFile  # noqa: E402
+from .datafile import DataFile
 
 PLATE_TYPES = 1    # LIGGGHTS gives walls a particle type of their own (model.lig: type 3)
 MARGIN = 0.02      # m added to the box on each side in x and y

@@ -3,7 +3,7 @@
 0.015` and `0.0075`, half the frequency at every amplitude) must give the same secant stiffness
 and damping.
 
-usage: /usr/bin/python3 inputs/check_cyclic_rate.py RUN_FAST RUN_SLOW [--tol-k 0.05] [--tol-h 0.02]
+usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.check_cyclic_rate RUN_FAST RUN_SLOW [--tol-k 0.05] [--tol-h 0.02]
 
 For every cycle both runs completed: K_eq within TOL_K (relative) and h_eq within TOL_H (absolute)
 of the faster run's. Prints the table; exits 1 if a cycle differs by more.
@@ -11,10 +11,8 @@ of the faster run's. Prints the table; exits 1 if a cycle differs by more.
 import argparse
 import sys
 from statistics import mean, stdev
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-from tbagspost import cyclic  # noqa: E402
+from . import cyclic
 
 
 def main(argv=None):

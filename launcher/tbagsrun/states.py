@@ -1,0 +1,95 @@
+"""Committed states: a long stage's product (the paper bag's fill, ...) kept in the repository
+under states/<name>/ (the product xz-compressed, and manifest.json: the deck, the product, the
+stage's -var stamp, the sha256 and size of the product, the command that made it), so that a
+preset on a new machine skips hours of work. stages.stage_once restores a state whose deck,
+product and stamp are the stage's own, checksum verified, before it would run the stage.
+
+Keep a state (from the launcher/ folder, after the stage finished):
+  /usr/bin/python3 -m tbagsrun.states keep FOLDER DECK PRODUCT NAME "COMMAND THAT MADE IT"
+"""
+import hashlib
+import json
+import lzma
+import shutil
+import sys
+from pathlib import Path
+
+from . import ROOT, LaunchError
+
+STATES = ROOT / "states"
+CHUNK = 1 << 20
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(CHUNK), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def manifests(root=None):
+    """[(folder, manifest dict)] of the committed states (root: states/)."""
+    return [(m.parent, json.loads(m.read_text())) for m in sorted(Path(root or STATES).glob("*/manifest.json"))]
+
+
+def find(deck, product, key, root=None):
+    """The folder of the committed state made by `deck` with the stamp `key`, or None."""
+    for folder, m in manifests(root):
+        if m["deck"] == deck and m["product"] == product and m["vars"] == key:
+            return folder
+    return None
+
+
+def unpack(state, target):
+    """state's product decompressed to target, its size and sha256 checked (LaunchError if not:
+    the committed file is damaged; nothing is left at target)."""
+    m = json.loads((Path(state) / "manifest.json").read_text())
+    part = Path(str(target) + ".part")
+    with lzma.open(Path(state) / (m["product"] + ".xz")) as src, open(part, "wb") as dst:
+        shutil.copyfileobj(src, dst, CHUNK)
+    if part.stat().st_size != m["size"] or sha256(part) != m["sha256"]:
+        part.unlink()
+        raise LaunchError("states: %s does not match its manifest (size or sha256): the committed "
+                          "file is damaged; `git checkout -- %s`, or remove the folder to make the "
+                          "stage again (%s)" % (state, state, m["made_by"]))
+    part.replace(target)
+    return m
+
+
+def restore(folder, deck, key, product, say, root=None):
+    """folder/product from a committed state made with the same deck and stamp, and the stamp
+    beside it (stages.stage_once then reuses it); False when there is none."""
+    state = find(deck, product, key, root)
+    if state is None:
+        return False
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    m = unpack(state, folder / product)
+    (folder / (".%s.vars" % deck)).write_text(key)
+    say("tbags shear: %s in %s: the committed state %s (made by %s; sha256 %s... checked)"
+        % (deck, folder, Path(state).name, m["made_by"], m["sha256"][:12]))
+    return True
+
+
+def keep(folder, deck, product, name, made_by, root=None):
+    """Commit folder/product (made by `deck`, its stamp beside it) as the state `name`."""
+    folder = Path(folder)
+    stamp = folder / (".%s.vars" % deck)
+    if not (folder / product).is_file() or not stamp.is_file():
+        raise LaunchError("states: %s needs %s and its stamp %s (a finished stage)"
+                          % (folder, product, stamp.name))
+    state = Path(root or STATES) / name
+    state.mkdir(parents=True, exist_ok=True)
+    with open(folder / product, "rb") as src, lzma.open(state / (product + ".xz"), "wb", preset=9) as dst:
+        shutil.copyfileobj(src, dst, CHUNK)
+    m = dict(deck=deck, product=product, vars=stamp.read_text(), size=(folder / product).stat().st_size,
+             sha256=sha256(folder / product), made_by=made_by)
+    (state / "manifest.json").write_text(json.dumps(m, indent=1) + "\n")
+    return state
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 7 or sys.argv[1] != "keep":
+        sys.exit(__doc__)
+    print(keep(*sys.argv[2:]))

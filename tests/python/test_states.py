@@ -1,0 +1,99 @@
+"""Committed states (launcher/tbagsrun/states.py): kept and restored bit for bit, a damaged one
+refused, a stage made once skipped when its state is committed, and every committed state's
+checksum (the paper bag's fill: its counts too)."""
+import json
+import lzma
+import re
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "launcher"))
+from tbagsrun import LaunchError, stages, states  # noqa: E402
+
+
+def made(folder, body=b"LAMMPS data file\n\n5 atoms\n" * 100):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "fill.data").write_bytes(body)
+    (folder / ".fill.vars").write_text(stages.vars_key({"nx": 81, "ny": 81, "nz": 17}))
+    return body
+
+
+def test_keep_then_restore_bit_for_bit(tmp_path):
+    body = made(tmp_path / "run")
+    states.keep(tmp_path / "run", "fill", "fill.data", "paper-fill", "./tbags shear paper", root=tmp_path / "st")
+    said = []
+    key = stages.vars_key({"nx": 81, "ny": 81, "nz": 17})
+    assert states.restore(tmp_path / "new", "fill", key, "fill.data", said.append, root=tmp_path / "st")
+    assert (tmp_path / "new" / "fill.data").read_bytes() == body
+    assert (tmp_path / "new" / ".fill.vars").read_text() == key
+    assert "paper-fill" in said[0] and "checked" in said[0]
+    # another stamp (another bag or -var value), deck or product: not this state
+    other = stages.vars_key({"nx": 81, "ny": 81, "nz": 15})
+    assert not states.restore(tmp_path / "n2", "fill", other, "fill.data", said.append, root=tmp_path / "st")
+    assert not states.restore(tmp_path / "n3", "bag", key, "fill.data", said.append, root=tmp_path / "st")
+    assert not (tmp_path / "n2" / "fill.data").exists()
+
+
+def test_damaged_state_refused(tmp_path):
+    made(tmp_path / "run")
+    st = states.keep(tmp_path / "run", "fill", "fill.data", "x", "cmd", root=tmp_path / "st")
+    with lzma.open(st / "fill.data.xz", "wb") as f:     # the content changed, the manifest not
+        f.write(b"LAMMPS data file\n\n6 atoms\n" * 100)
+    key = (tmp_path / "run" / ".fill.vars").read_text()
+    with pytest.raises(LaunchError, match="damaged"):
+        states.restore(tmp_path / "new", "fill", key, "fill.data", print, root=tmp_path / "st")
+    assert not list((tmp_path / "new").iterdir())
+
+
+def test_stage_once_uses_the_committed_state(tmp_path, monkeypatch):
+    body = made(tmp_path / "run")
+    states.keep(tmp_path / "run", "fill", "fill.data", "paper-fill", "cmd", root=tmp_path / "st")
+    monkeypatch.setattr(states, "STATES", tmp_path / "st")
+
+    def no_run(*a):
+        raise AssertionError("the stage ran although its state is committed")
+    monkeypatch.setattr(stages, "stage", no_run)
+    said = []
+    stages.stage_once(tmp_path / "out", "fill", 2, {"nx": 81, "ny": 81, "nz": 17}, said.append, "fill.data")
+    assert (tmp_path / "out" / "fill.data").read_bytes() == body
+    assert any("done before, reused" in s for s in said)
+    # other variables: the stage runs
+    with pytest.raises(AssertionError, match="the stage ran"):
+        stages.stage_once(tmp_path / "o2", "fill", 2, {"nx": 81, "ny": 81, "nz": 17, "seed": 5}, said.append,
+                          "fill.data")
+
+
+def header_counts(path):
+    counts = {}
+    with lzma.open(path, "rt") as f:
+        for line in f:
+            m = re.match(r"\s*(\d+)\s+(atoms|bonds)\s*$", line)
+            if m:
+                counts[m.group(2)] = int(m.group(1))
+            if line.strip() in ("Atoms # sphere", "Atoms # hybrid", "Masses") or line.startswith("Atoms"):
+                break
+    return counts
+
+
+COMMITTED = states.manifests()
+
+
+@pytest.mark.parametrize("folder,m", COMMITTED, ids=[f.name for f, _ in COMMITTED])
+def test_committed_state_checksum(tmp_path, folder, m):
+    assert set(m) == {"deck", "product", "vars", "size", "sha256", "made_by"}
+    json.loads(m["vars"])
+    states.unpack(folder, tmp_path / m["product"])    # raises if size or sha256 differ
+    assert (folder / (m["product"] + ".xz")).stat().st_size < 20e6    # the issue's limit for a fill
+
+
+def test_paper_fill_committed():
+    """The paper preset's fill is committed: 17,922 bag particles + 97,130 grains, 35,840 bonds,
+    and its stamp is the one the preset's fill stage computes (so the preset skips the fill)."""
+    folder = states.STATES / "paper-fill"
+    m = json.loads((folder / "manifest.json").read_text())
+    assert header_counts(folder / "fill.data.xz") == {"atoms": 17922 + 97130, "bonds": 35840}
+    from tbagsrun.cli import parse
+    o = parse(["paper"])    # what `./tbags shear paper` gives its fill stage (shear.run_preset)
+    assert m["vars"] == stages.vars_key(dict(o.preset.bag, **dict(o.variables, seed=o.seed)))
