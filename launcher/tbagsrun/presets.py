@@ -23,6 +23,12 @@ DESIGN_FABRICS = ("solid", "woven")
 # 5 mm of shear is the paper's 20 % average shear strain
 TRENDS_BAG = dict(nx=28, ny=28, nz=7)
 PAPER_BAG = dict(nx=81, ny=81, nz=17)
+# the rate study: the paper shears its 75 mm of sand at 4 mm/s; at the same stress the trends
+# bag's 25 mm has the paper's inertial number (I = (v/H) d sqrt(rho/p)) at 4 x 25/75 mm/s, if its
+# sand carries the same share of F_v (the load path measures it per run); RATE_MULTIPLES of it
+PAPER_SPEED = 0.004
+RATE_SPEED = PAPER_SPEED * (TRENDS_BAG["nz"] - 2) / (PAPER_BAG["nz"] - 2)
+RATE_MULTIPLES = (1, 2, 4, 8)
 
 
 @dataclass(frozen=True)
@@ -40,7 +46,7 @@ class Preset:
     runs: tuple
     side_by_side: bool               # the runs at once, the ranks shared among them
     post: str                        # "figures" (S-u, shape, network, ParaView), "cyclic", "stack"
-    check: str = ""                  # "trends", "speed" (tbagspost/check_trends.py)
+    check: str = ""                  # "trends", "speed" (tbagspost/check_trends.py), "rate" (tbagspost/rate.py)
     defaults_said: dict = field(default_factory=dict)    # variable -> line printed when it is the preset's
     realizations: bool = True        # --realizations offered (not for runs of hours or days)
     estimate: bool = False           # measures a short stretch first and projects the time
@@ -71,6 +77,15 @@ PRESETS = {p.name: p for p in (
            True, "figures", check="speed", defaults_said=PAPER_FABRIC,
            help="the trends bag at 1.96 kN (its highest inertial number) at 10 and 5 mm/s to 5 mm: the "
                 "S-u curves must agree (the speed does not drive the result). -> runs/quasistatic/"),
+    Preset("rate", "rate", TRENDS_BAG,
+           tuple(Run("I%d" % m, "shear", dict(Fpaper=1960, v=RATE_SPEED * m, ufinal=0.005)) for m in RATE_MULTIPLES),
+           True, "figures", check="rate", defaults_said=PAPER_FABRIC,
+           help="the rate study of the paper run: the trends bag at 1.96 kN (the highest inertial number) "
+                "sheared to 5 mm at 1, 2, 4 and 8 times the paper's inertial number (1.33, 2.67, 5.33, "
+                "10.7 mm/s; the paper's 4 mm/s on its 75 mm of sand is 1.33 mm/s on 25 mm), side by side; "
+                "with --realizations 3 (about 1.5 h on 2 cores) tbagspost/rate.py compares each speed "
+                "with the slowest against the realizations' spread and names the fastest within it "
+                "(rate.md). -> runs/rate/"),
     Preset("cyclic", "cyclic", DEMO_BAG, per_load("cyclic"), True, "cyclic", realizations=False,
            fabrics=DESIGN_FABRICS,
            help="the demo bag at the three loads' stresses (side by side), cycled with F_v held: "

@@ -198,7 +198,11 @@ def post_process(preset, out, say, engine="lammps"):
 
 
 def check(preset, out, say, in_realizations):
-    if not preset.check:
+    if not preset.check or (preset.check == "rate" and in_realizations):    # rate: over the realizations
+        return
+    if preset.check == "rate":
+        if not run_module("rate", [out], say)[0]:
+            raise LaunchError("rate: the study failed (above)")
         return
     args = [out] if preset.check == "trends" else ["--speed"] + [run_folder(out, r) for r in preset.runs]
     ok, _ = run_module("check_trends", args, say)
@@ -253,6 +257,9 @@ def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps", re
         raise LaunchError("%s\nshear: the realizations' summary failed" % err.strip())
     say("tbags shear %s: %d realizations done in %d s; spread in %s/realizations/"
         % (preset.name, n, time.time() - t0, out))
+    if preset.check == "rate":
+        if not run_module("rate", [out], say)[0]:
+            raise LaunchError("rate: the study failed (above)")
     if preset.check == "trends":
         ok, text = run_module("check_trends", [out], say)
         (out / "realizations" / "check.txt").write_text(text)

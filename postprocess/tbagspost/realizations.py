@@ -11,6 +11,7 @@ Writes into OUTDIR: realizations.csv (one row per run), realizations.md (the tab
 spread), curves_<group>.csv (u_mm, S and w: mean, std, min, max, n) and realizations.png.
 """
 import os
+import re
 from collections import OrderedDict
 from pathlib import Path
 
@@ -88,8 +89,9 @@ def group_runs(runs):
 
 def realization_dir(run):
     """The realization's folder: the run's own for a run per realization (r1), else its parent
-    (r1/F5500, a load of a realization)."""
-    return run.path.resolve().parent if run.name.startswith("F") else run.path.resolve()
+    (r1/F5500 a load, r1/v0.01 a speed of a realization)."""
+    here = run.path.resolve()
+    return here.parent if run.name.startswith("F") or re.fullmatch(r"r\d+", here.parent.name) else here
 
 
 def realization_name(run):

@@ -1,0 +1,56 @@
+"""tbagspost/rate.py on synthetic runs: the fastest speed within the realizations' spread is
+chosen; a speed whose mean S leaves the spread fails, and so does every faster one; one
+realization gives no choice."""
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+from tbagspost import rate  # noqa: E402
+
+
+def write(folder, S, w, inertial):
+    folder.mkdir(parents=True)
+    u = np.arange(0, 5.0001, 0.1)
+    with open(folder / "shear.csv", "w") as f:
+        f.write("time_s,u_mm,w_mm,S_N,Fv_N\n")
+        for k, x in enumerate(u):
+            f.write("%g,%g,%g,%g,%g\n" % (k * 0.01, x, w(x), S(x), 212.0))
+    (folder / "log.shear").write_text("INERTIAL: shear rate 1 1/s, mean stress 12.5 kPa, inertial "
+                                      "number %.2e (quasi-static below 1e-3)\n" % inertial)
+
+
+def make(root, offsets, n=3, spread=10.0):
+    """n realizations; speed m's mean S shifted by offsets[m] N; each realization off by
+    -spread, 0, +spread (sd = spread for n = 3)."""
+    for k in range(n):
+        dev = (k - 1) * spread
+        for m, off in offsets.items():
+            write(root / ("r%d" % (k + 1)) / ("I%d" % m),
+                  lambda x, o=off, d=dev: 400 * (1 - np.exp(-x)) + o + d,
+                  lambda x, d=dev: -0.05 * x + 1e-3 * d, 1.2e-4 * m)
+    return root
+
+
+def test_fastest_within_spread_is_chosen(tmp_path):
+    root = make(tmp_path / "a", {1: 0.0, 2: 3.0, 4: 6.0, 8: 30.0})
+    text, chosen = rate.report(root)
+    assert chosen == 4
+    rows = {r["m"]: r for r in rate.study(root)[0]}
+    assert abs(rows[8]["dS"] - 30.0) < 0.5 and abs(rows[8]["sS"] - 10.0) < 0.5 and rows[8]["passed"] is False
+    assert rows[4]["passed"] and abs(rows[2]["inertial"] - 2.4e-4) < 1e-9
+    assert "Chosen: 4 x" in text and (root / "rate.csv").is_file()
+
+
+def test_a_failing_speed_stops_the_choice(tmp_path):
+    # 2x out of the spread: 4x back inside does not count
+    _, chosen = rate.report(make(tmp_path / "b", {1: 0.0, 2: 25.0, 4: 2.0}))
+    assert chosen == 1
+    _, chosen = rate.report(make(tmp_path / "c", {1: 0.0, 2: 2.0, 4: 4.0, 8: 5.0}))
+    assert chosen == 8
+
+
+def test_one_realization_no_choice(tmp_path):
+    text, chosen = rate.report(make(tmp_path / "d", {1: 0.0, 2: 1.0}, n=1))
+    assert chosen is None and "no spread" in text
