@@ -54,5 +54,6 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
         sub = folder / "decomp" / ("np%d" % r)
         shutil.rmtree(sub, ignore_errors=True)
         stage(sub, "shear", r, dict(shear, restart="../../state/" + restart, steps=5, du_dump=1), quiet)
-    if not run_module("project_time", [folder, "--ranks", ranks, "--shared", part[3]["compress_to"] if part else 0], say)[0]:
+    shared = part[3]["compress_to"] if part else 0    # where the loads' shared compression ends
+    if not run_module("project_time", [folder, "--ranks", ranks, "--shared", shared], say)[0]:
         raise LaunchError("paper: the projection failed (above)")
