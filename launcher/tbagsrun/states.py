@@ -18,6 +18,24 @@ from . import ROOT, LaunchError
 
 STATES = ROOT / "states"
 CHUNK = 1 << 20
+# the files a stage reads (its deck and what it includes); a state made from other contents of
+# them is not restored: the stage runs instead. Other decks: their own and every include.
+READS = {"bag": ("inputs/in.bag",),
+         "fill": ("inputs/in.bag", "inputs/in.fill", "inputs/sand.lmp", "inputs/fabric.lmp",
+                  "inputs/yarn.lmp", "inputs/yarn_pp_tape.table")}
+
+
+def reads(deck, root=ROOT):
+    """{path: sha256} of the files `deck` reads."""
+    names = READS.get(deck) or sorted({"inputs/in.%s" % deck} | {str(p.relative_to(root)) for p in
+                                      (Path(root) / "inputs").glob("*.lmp")} | {"inputs/yarn_pp_tape.table"})
+    return {n: sha256(Path(root) / n) for n in names}
+
+
+def changed_inputs(m):
+    """The files the state's deck reads whose contents differ from those that made it."""
+    now = reads(m["deck"])
+    return sorted(n for n in set(now) | set(m["inputs"]) if now.get(n) != m["inputs"].get(n))
 
 
 def sha256(path):
@@ -63,6 +81,11 @@ def restore(folder, deck, key, product, say, root=None):
     state = find(deck, product, key, root)
     if state is None:
         return False
+    changed = changed_inputs(json.loads((Path(state) / "manifest.json").read_text()))
+    if changed:
+        say("tbags shear: the committed state %s was made by other decks (changed: %s): the %s stage "
+            "runs (states/README.md: keep it again)" % (Path(state).name, ", ".join(changed), deck))
+        return False
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     m = unpack(state, folder / product)
@@ -84,7 +107,7 @@ def keep(folder, deck, product, name, made_by, root=None):
     with open(folder / product, "rb") as src, lzma.open(state / (product + ".xz"), "wb", preset=9) as dst:
         shutil.copyfileobj(src, dst, CHUNK)
     m = dict(deck=deck, product=product, vars=stamp.read_text(), size=(folder / product).stat().st_size,
-             sha256=sha256(folder / product), made_by=made_by)
+             sha256=sha256(folder / product), made_by=made_by, inputs=reads(deck))
     (state / "manifest.json").write_text(json.dumps(m, indent=1) + "\n")
     return state
 

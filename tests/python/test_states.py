@@ -65,6 +65,18 @@ def test_stage_once_uses_the_committed_state(tmp_path, monkeypatch):
                           "fill.data")
 
 
+def test_state_of_other_decks_not_restored(tmp_path, monkeypatch):
+    """A deck the stage reads changed since the state was made: the stage runs instead."""
+    made(tmp_path / "run")
+    states.keep(tmp_path / "run", "fill", "fill.data", "x", "cmd", root=tmp_path / "st")
+    key = (tmp_path / "run" / ".fill.vars").read_text()
+    real = states.reads
+    monkeypatch.setattr(states, "reads", lambda deck: dict(real(deck), **{"inputs/in.fill": "0" * 64}))
+    said = []
+    assert not states.restore(tmp_path / "new", "fill", key, "fill.data", said.append, root=tmp_path / "st")
+    assert "changed: inputs/in.fill" in said[0] and not (tmp_path / "new" / "fill.data").exists()
+
+
 def header_counts(path):
     counts = {}
     with lzma.open(path, "rt") as f:
@@ -82,7 +94,9 @@ COMMITTED = states.manifests()
 
 @pytest.mark.parametrize("folder,m", COMMITTED, ids=[f.name for f, _ in COMMITTED])
 def test_committed_state_checksum(tmp_path, folder, m):
-    assert set(m) == {"deck", "product", "vars", "size", "sha256", "made_by"}
+    assert set(m) == {"deck", "product", "vars", "size", "sha256", "made_by", "inputs"}
+    assert states.changed_inputs(m) == [], ("the decks changed since %s was made: remake it "
+                                            "(states/README.md)" % folder.name)
     json.loads(m["vars"])
     states.unpack(folder, tmp_path / m["product"])    # raises if size or sha256 differ
     assert (folder / (m["product"] + ".xz")).stat().st_size < 20e6    # the issue's limit for a fill
