@@ -197,12 +197,18 @@ def post_process(preset, out, say, engine="lammps"):
                 say(line)
 
 
+def rate_study(out, say):
+    """tbagspost.rate over the speed folders of out (its realizations' or its own)."""
+    if not run_module("rate", [out], say)[0]:
+        raise LaunchError("rate: the study failed (above)")
+
+
 def check(preset, out, say, in_realizations):
-    if not preset.check or (preset.check == "rate" and in_realizations):    # rate: over the realizations
+    if preset.check == "rate":    # over the realizations when there are several
+        if not in_realizations:
+            rate_study(out, say)
         return
-    if preset.check == "rate":
-        if not run_module("rate", [out], say)[0]:
-            raise LaunchError("rate: the study failed (above)")
+    if not preset.check:
         return
     args = [out] if preset.check == "trends" else ["--speed"] + [run_folder(out, r) for r in preset.runs]
     ok, _ = run_module("check_trends", args, say)
@@ -258,8 +264,7 @@ def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps", re
     say("tbags shear %s: %d realizations done in %d s; spread in %s/realizations/"
         % (preset.name, n, time.time() - t0, out))
     if preset.check == "rate":
-        if not run_module("rate", [out], say)[0]:
-            raise LaunchError("rate: the study failed (above)")
+        rate_study(out, say)
     if preset.check == "trends":
         ok, text = run_module("check_trends", [out], say)
         (out / "realizations" / "check.txt").write_text(text)

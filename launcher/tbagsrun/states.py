@@ -52,17 +52,16 @@ def manifests(root=None):
 
 
 def find(deck, product, key, root=None):
-    """The folder of the committed state made by `deck` with the stamp `key`, or None."""
+    """(folder, manifest) of the committed state made by `deck` with the stamp `key`, or None."""
     for folder, m in manifests(root):
         if m["deck"] == deck and m["product"] == product and m["vars"] == key:
-            return folder
+            return folder, m
     return None
 
 
-def unpack(state, target):
-    """state's product decompressed to target, its size and sha256 checked (LaunchError if not:
-    the committed file is damaged; nothing is left at target)."""
-    m = json.loads((Path(state) / "manifest.json").read_text())
+def unpack(state, m, target):
+    """The product of the state (its folder and manifest) decompressed to target, its size and
+    sha256 checked (LaunchError if not: the committed file is damaged; nothing is left at target)."""
     part = Path(str(target) + ".part")
     with lzma.open(Path(state) / (m["product"] + ".xz")) as src, open(part, "wb") as dst:
         shutil.copyfileobj(src, dst, CHUNK)
@@ -72,23 +71,23 @@ def unpack(state, target):
                           "file is damaged; `git checkout -- %s`, or remove the folder to make the "
                           "stage again (%s)" % (state, state, m["made_by"]))
     part.replace(target)
-    return m
 
 
 def restore(folder, deck, key, product, say, root=None):
     """folder/product from a committed state made with the same deck and stamp, and the stamp
     beside it (stages.stage_once then reuses it); False when there is none."""
-    state = find(deck, product, key, root)
-    if state is None:
+    found = find(deck, product, key, root)
+    if found is None:
         return False
-    changed = changed_inputs(json.loads((Path(state) / "manifest.json").read_text()))
+    state, m = found
+    changed = changed_inputs(m)
     if changed:
         say("tbags shear: the committed state %s was made by other decks (changed: %s): the %s stage "
             "runs (states/README.md: keep it again)" % (Path(state).name, ", ".join(changed), deck))
         return False
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    m = unpack(state, folder / product)
+    unpack(state, m, folder / product)
     (folder / (".%s.vars" % deck)).write_text(key)
     say("tbags shear: %s in %s: the committed state %s (made by %s; sha256 %s... checked)"
         % (deck, folder, Path(state).name, m["made_by"], m["sha256"][:12]))

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Quasi-static check of the cyclic test: the same bag cycled at two speeds (e.g. `-var vpeak
 0.015` and `0.0075`, half the frequency at every amplitude) must give the same secant stiffness
 and damping.

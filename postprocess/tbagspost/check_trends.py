@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Check the paper's findings (Panganiban et al. 2025, Part 2) on the runs of `./tbags shear trends`.
 
 usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.check_trends TRENDS_DIR    (F5500/, F3730/, F1960/ inside, or

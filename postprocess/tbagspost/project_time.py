@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Projected wall time of the paper-size simple shear protocol from a measured short stretch of
 its own bag, and the scaling model over ranks (scaling.py).
 

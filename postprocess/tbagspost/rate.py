@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .check_trends import realizations
 from .realizations import mean_curves
 from .run import read_csv
 
@@ -27,11 +28,8 @@ INERTIAL = re.compile(r"^INERTIAL:.*?inertial number ([0-9.eE+-]+)", re.M)
 
 def speed_folders(root):
     """{m: [run folders]} of the I<m> folders in root's realizations r<k> (or in root)."""
-    root = Path(root)
-    reals = sorted((p for p in root.glob("r*") if p.is_dir() and re.fullmatch(r"r\d+", p.name)),
-                   key=lambda p: int(p.name[1:])) or [root]
     runs = {}
-    for r in reals:
+    for r in realizations(root):
         for f in r.glob("I*"):
             if re.fullmatch(r"I\d+", f.name) and (f / "shear.csv").is_file():
                 runs.setdefault(int(f.name[1:]), []).append(f)

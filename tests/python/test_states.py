@@ -98,7 +98,7 @@ def test_committed_state_checksum(tmp_path, folder, m):
     assert states.changed_inputs(m) == [], ("the decks changed since %s was made: remake it "
                                             "(states/README.md)" % folder.name)
     json.loads(m["vars"])
-    states.unpack(folder, tmp_path / m["product"])    # raises if size or sha256 differ
+    states.unpack(folder, m, tmp_path / m["product"])    # raises if size or sha256 differ
     assert (folder / (m["product"] + ".xz")).stat().st_size < 20e6    # the limit for a fill
 
 
