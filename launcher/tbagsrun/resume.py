@@ -47,6 +47,26 @@ def checkpoints(folder, deck):
     return []
 
 
+# a once-made stage's own checkpoints while it runs (stages.stage_once), by its product: the
+# shared compression's (inputs/between_plates.lmp, every compress_every steps), continued with
+# -var compress_from
+ONCE_CHECKPOINTS = {"compress.restart": ("compress.part.1", "compress.part.2")}
+
+
+def once_checkpoints(folder, product):
+    """[(file name, -var values to continue from it)] of a once-made stage stopped before its
+    product, the newer first."""
+    files = [Path(folder) / n for n in ONCE_CHECKPOINTS.get(product, ())]
+    files = sorted((f for f in files if f.is_file()), key=lambda f: f.stat().st_mtime, reverse=True)
+    return [(f.name, {"compress_from": f.name}) for f in files]
+
+
+def drop_once_checkpoints(folder, product):
+    """A once-made stage's checkpoints removed (its product made, or a fresh start)."""
+    for n in ONCE_CHECKPOINTS.get(product, ()):
+        (Path(folder) / n).unlink(missing_ok=True)
+
+
 def set_aside(folder, deck):
     """The interrupted run's log and screen output kept as log.<deck>.N and screen.<deck>.txt.N
     (N the first number free for both), for the resumed run's own."""

@@ -56,6 +56,18 @@ def run_variables(preset, run, user):
     return variables
 
 
+# the -var values of the decks' motion after the compression (in.shear's shear, in.cyclic's
+# cycles and histories), which the shared part of the compression does not read: left out of the
+# part's variables, so that the part (and its committed state) serves runs of any speed and length
+MOTION = {"v", "ufinal", "du_csv", "du_dump", "steps", "trace", "state", "amps", "cycles", "wave",
+          "vpeak", "rows", "start", "hrow", "hchunks", "history"}
+
+
+def part_variables(preset, part, user):
+    """The shared part's -var values: run_variables() without the motion's (MOTION)."""
+    return {k: v for k, v in run_variables(preset, part, user).items() if k not in MOTION}
+
+
 def shared_compression(preset, user, engine):
     """The run that makes the compression's shared part (folder "compress", the smallest load,
     -var compress_to: COMPRESS_SHARED or the user's fraction, 0 for none), when the preset's runs
@@ -69,7 +81,8 @@ def shared_compression(preset, user, engine):
     if any(x != rest[0] for x in rest) or any("Fpaper" not in r.variables for r in runs):
         return None
     lightest = min(runs, key=lambda r: r.variables["Fpaper"])
-    return Run("compress", lightest.deck, dict(lightest.variables, compress_to=fraction))
+    return Run("compress", lightest.deck, {k: v for k, v in dict(lightest.variables, compress_to=fraction).items()
+                                           if k not in MOTION})
 
 
 def plan(preset, out, user, engine="lammps"):
@@ -83,7 +96,7 @@ def plan(preset, out, user, engine="lammps"):
     each_user = user
     if part:
         folder = run_folder(out, part)
-        stages.append(guard.Stage(folder, part.deck, run_variables(preset, part, user), "compress.restart"))
+        stages.append(guard.Stage(folder, part.deck, part_variables(preset, part, user), "compress.restart"))
         each_user = {k: v for k, v in user.items() if k != "compress_to"}    # the part's only
         each_user["compress_from"] = os.path.relpath(folder / "compress.restart", run_folder(out, preset.runs[0]))
     for run in preset.runs:

@@ -98,17 +98,40 @@ def fresh_dir(folder):
 def stage_once(folder, deck, ranks, variables, say, product):
     """stage(), unless an earlier call made `product` in folder with the same variables (a stamp
     beside it) or a committed state (states.py) holds it, so that a long stage that finished is
-    not run again."""
-    stamp = Path(folder) / (".%s.vars" % deck)
+    not run again. A stage stopped before its product continues from its own checkpoints (the
+    shared compression's, resume.once_checkpoints; or a committed one) when its stamp, written
+    before it ran, is this call's."""
+    folder = Path(folder)
+    stamp = folder / (".%s.vars" % deck)
     key = vars_key(variables)
-    if not (Path(folder) / product).is_file():
+    if not (folder / product).is_file():
         states.restore(folder, deck, key, product, say)
-    if (Path(folder) / product).is_file() and stamp.is_file() and stamp.read_text() == key:
+    if (folder / product).is_file() and stamp.is_file() and stamp.read_text() == key:
         say("tbags shear: %s in %s: done before, reused" % (deck, folder))
         return
-    stamp.unlink(missing_ok=True)
+    if not (folder / product).is_file() and not resumed.once_checkpoints(folder, product):
+        for name in resumed.ONCE_CHECKPOINTS.get(product, ()):
+            if states.restore(folder, deck, key, name, say):
+                break
+    tries = resumed.once_checkpoints(folder, product) if stamp.is_file() and stamp.read_text() == key else []
+    for k, (name, extra) in enumerate(tries):
+        say("tbags shear: %s in %s: continuing from its checkpoint %s" % (deck, folder, name))
+        resumed.set_aside(folder, deck)
+        try:
+            stage(folder, deck, ranks, dict(variables, **extra), say)
+        except LaunchError as e:
+            if k + 1 == len(tries):
+                raise
+            say("%s\n  (continuing from %s failed; the older checkpoint next)" % (e, name))
+            continue
+        resumed.drop_once_checkpoints(folder, product)
+        return
+    (folder / product).unlink(missing_ok=True)
+    resumed.drop_once_checkpoints(folder, product)
+    folder.mkdir(parents=True, exist_ok=True)
+    stamp.write_text(key)    # before the run: its checkpoints belong to these variables
     stage(folder, deck, ranks, variables, say)
-    stamp.write_text(key)
+    resumed.drop_once_checkpoints(folder, product)
 
 
 def vars_key(variables):

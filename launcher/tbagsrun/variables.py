@@ -39,7 +39,7 @@ RANGES = {
         "Fpaper", "v", "ufinal", "du_csv", "du_dump", "vpeak", "freq", "e0", "film_t", "film_rho",
         "film_E", "film_gap", "tau_f", "kp", "vmax", "vmax_compress", "ke_tol", "vtol")},
     **{n: (whole(1), "a whole number, 1 or more") for n in (
-        "cycles", "rows", "bags", "nsettle", "settle_chunk", "settle_max", "start", "seed")},
+        "cycles", "rows", "bags", "nsettle", "settle_chunk", "settle_max", "start", "seed", "compress_every")},
     "Fv": (or_minus_one(positive), "positive (N), or -1 for Fpaper scaled by the plan area"),
     "film_mu": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (none given)"),
     "film_mu_below": (or_minus_one(lambda x: x >= 0), "0 or more, or -1 (film_mu)"),

@@ -10,6 +10,12 @@ the realizations' pooled standard deviation (sqrt((sd_m^2 + sd_slowest^2) / 2), 
 one fill), for S and for w. A speed passes when both differences are within that spread; the
 chosen speed is the fastest whose slower speeds all pass. Writes RATE_DIR/rate.md and rate.csv.
 
+The inertial number I = (v/H) d sqrt(rho/p) is given twice: nominal, with p = F_v over the inner
+plan area (the deck's INERTIAL line), and with the sand's own stress, p = the share of F_v that
+sand-sand contacts pass across the bag's mid-height (tbagspost.loadpath, mean over the run's dumps
+while shearing) times F_v over the plan area: I_sand = I / sqrt(share). Where the fabric carries
+most of F_v (the solid cage), the sand shears at a far higher inertial number than the nominal.
+
 usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.rate RATE_DIR
 """
 import re
@@ -18,9 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
+from . import loadpath
 from .check_trends import realizations
 from .realizations import mean_curves
-from .run import read_csv
+from .run import Run, read_csv
 
 U_FROM = 0.25      # mm: the first rows hold the plate's start-up transient
 INERTIAL = re.compile(r"^INERTIAL:.*?inertial number ([0-9.eE+-]+)", re.M)
@@ -45,6 +52,18 @@ def inertial_number(folder):
             if m:
                 return float(m.group(1))
     return float("nan")
+
+
+def sand_share(folder):
+    """The sand's share of F_v while shearing: the compressive force the sand-sand contacts pass
+    across the bag's mid-height over the plate's F_v, the mean over the dumps at u > 0; nan
+    without contact dumps."""
+    run = Run(folder)
+    if not run.steps("contacts"):
+        return float("nan")
+    shares = [r["sand-sand"][0] / run.at_step(step, "Fv_N") for step, r in loadpath.by_step(run).items()
+              if run.at_step(step) > 0]
+    return float(np.mean(shares)) if shares else float("nan")
 
 
 def rms(x):
@@ -82,7 +101,9 @@ def study(root):
             ok_so_far = ok_so_far and bool(passed)
             if ok_so_far:
                 chosen = m
-        rows.append(dict(m=m, n=len(fs), inertial=np.nanmean([inertial_number(f) for f in fs]),
+        share = np.nanmean([sand_share(f) for f in fs]) if any(Run(f).steps("contacts") for f in fs) else np.nan
+        inertial = np.nanmean([inertial_number(f) for f in fs])
+        rows.append(dict(m=m, n=len(fs), inertial=inertial, share=share, inertial_sand=inertial / np.sqrt(share),
                          dS=c["S_N"][0], sS=c["S_N"][1], dw=c["w_mm"][0], sw=c["w_mm"][1],
                          S_end=float(curves[m]["S_N_mean"][-1]), passed=passed))
     return rows, (chosen if n > 1 else None), n
@@ -94,12 +115,14 @@ def report(root):
              "Each speed against the slowest over u = %g mm to the end: rms difference of the mean "
              "curves and the realizations' pooled standard deviation (a speed passes when both "
              "differences are within it)." % U_FROM, "",
-             "| speed (x the paper's inertial number) | runs | inertial number (nominal) | S: rms difference (N) "
+             "| speed (x the paper's inertial number) | runs | inertial number (nominal) | the sand's share of F_v "
+             "| inertial number (the sand's stress) | S: rms difference (N) "
              "| S: spread (N) | w: rms difference (mm) | w: spread (mm) | S at the end (N) | within the spread |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %d | %d | %.2e | %.1f | %.1f | %.4f | %.4f | %.1f | %s |" % (
-            r["m"], r["n"], r["inertial"], r["dS"], r["sS"], r["dw"], r["sw"], r["S_end"],
+        lines.append("| %d | %d | %.2e | %s | %s | %.1f | %.1f | %.4f | %.4f | %.1f | %s |" % (
+            r["m"], r["n"], r["inertial"], "n/a (no dumps)" if np.isnan(r["share"]) else "%.2f" % r["share"],
+            "n/a" if np.isnan(r["share"]) else "%.2e" % r["inertial_sand"], r["dS"], r["sS"], r["dw"], r["sw"], r["S_end"],
             "reference" if r["m"] == rows[0]["m"] else {True: "yes", False: "no", None: "n/a"}[r["passed"]]))
     lines.append("")
     if chosen is None:
@@ -109,7 +132,7 @@ def report(root):
                      "all stay within the spread." % chosen)
     text = "\n".join(lines) + "\n"
     (Path(root) / "rate.md").write_text(text)
-    keys = ["m", "n", "inertial", "dS", "sS", "dw", "sw", "S_end", "passed"]
+    keys = ["m", "n", "inertial", "share", "inertial_sand", "dS", "sS", "dw", "sw", "S_end", "passed"]
     with open(Path(root) / "rate.csv", "w") as f:
         f.write(",".join(keys) + "\n")
         for r in rows:

@@ -153,3 +153,45 @@ def test_resume_an_interrupted_run(tmp_path):
           "against %.2f N (fills' sd %.1f N)" % (ref["u_mm"][same - 1], rows["S_N"][-1], ref["S_N"][-1], TINY_SD_S))
     assert ref["u_mm"][same - 1] >= 0.19    # the first checkpoint is at 0.2 mm
     assert abs(rows["S_N"][-1] - ref["S_N"][-1]) < 2 * TINY_SD_S
+
+
+def test_stopped_compression_continues_from_its_checkpoint(tmp_path):
+    """The loads' shared compression (hours on the paper's bag) writes checkpoints while it runs
+    (compress.part.1/2 every compress_every steps); a stage stopped before compress.restart
+    continues from the newer one when called again with the same variables (stages.stage_once),
+    and ends where the straight run ends: the same step, F_v and w."""
+    import re
+    from tbagsrun import stages
+    lmprun.filled_bag(tmp_path / "fill")
+    part = dict(lmprun.TINY_BAG, Fpaper=1960, v=0.02, compress_to=0.9, compress_every=1000, fill="../fill/fill.data")
+    straight = lmprun.run(lmprun.INPUTS / "in.shear", tmp_path / "straight", variables=part).check().output
+    line = re.search(r"^COMPRESSION PART: F_v (\S+) N .* after (\d+) steps, w (\S+) mm", straight, re.M)
+    n_steps = int(line.group(2))
+    # a stop after the last checkpoint: the folder as the stopped stage left it (its stamp, the
+    # checkpoint, no product)
+    # checkpoint (the newer of the two, unless written at the step the part ended)
+    parts = sorted((tmp_path / "straight").glob("compress.part.[12]"), key=lambda f: f.stat().st_mtime)
+    use, last = (parts[-1], n_steps // 1000 * 1000) if n_steps % 1000 else (parts[-2], n_steps - 1000)
+    assert last > 0, "the tiny bag's compression took fewer steps than one checkpoint"
+    stopped = tmp_path / "stopped"
+    stopped.mkdir()
+    (stopped / use.name).write_bytes(use.read_bytes())
+    (stopped / ".shear.vars").write_text(stages.vars_key(part))
+    said = []
+    stages.stage_once(stopped, "shear", 1, part, said.append, "compress.restart")
+    print("\n".join(said))
+    assert "tbags shear: shear in %s: continuing from its checkpoint %s" % (stopped, use.name) in said
+    again = next(s for s in said if "COMPRESSION PART" in s)
+    m = re.search(r"F_v (\S+) N .* after (\d+) steps, w (\S+) mm", again)
+    print("straight: %s steps, F_v %s N, w %s mm; continued from step %d: %s steps, F_v %s N, w %s mm"
+          % (n_steps, line.group(1), line.group(3), last, m.group(2), m.group(1), m.group(3)))
+    # (the restart's fresh force evaluation differs from the straight run's by round-off)
+    assert int(m.group(2)) == n_steps
+    assert float(m.group(1)) == pytest.approx(float(line.group(1)), rel=5e-3)
+    assert float(m.group(3)) == pytest.approx(float(line.group(3)), abs=1e-3)
+    assert (stopped / "compress.restart").is_file() and not list(stopped.glob("compress.part.*"))
+    assert "read_restart    compress.part" in (stopped / "log.shear").read_text()
+    # called again: reused, not run
+    said.clear()
+    stages.stage_once(stopped, "shear", 1, part, said.append, "compress.restart")
+    assert said == ["tbags shear: shear in %s: done before, reused" % stopped]

@@ -53,6 +53,22 @@ def test_loads_of_one_fill_share_their_compression():
         assert shared_compression(PRESETS[name], {}, "lammps") is None, name
 
 
+
+def test_the_shared_part_does_not_depend_on_the_motion():
+    """The part's variables (its stamp, and so its committed state) leave out the shear's and the
+    cycles' -var values, which it does not read: a run at another speed reuses it."""
+    from tbagsrun.shear import part_variables
+    paper = PRESETS["paper"]
+    part = shared_compression(paper, {}, "lammps")
+    assert "v" not in part.variables and "ufinal" not in part.variables
+    assert part_variables(paper, part, {"v": "0.016"}) == part_variables(paper, part, {}) == \
+        run_variables(paper, part, {})
+    assert part_variables(paper, part, {"sand": "calibrated"})["sand"] == "calibrated"
+    cyclic = PRESETS["cyclic"]
+    assert not {"amps", "vpeak", "cycles"} & set(part_variables(cyclic, shared_compression(cyclic, {}, "lammps"),
+                                                                 {"amps": "0.25 1", "vpeak": "0.01"}))
+
+
 def test_parse_options_variables_and_seed():
     o = parse(["trends", "-np", "3", "--realizations", "2", "-var", "seed", "7", "-var", "amps", "0.25", "1",
                "-var", "v", "0.01"])

@@ -19,3 +19,17 @@ def test_tbagspost_is_a_package_without_path_edits():
         text = p.read_text()
         assert "sys.path" not in text, "%s edits sys.path" % p.name
         assert not re.search(r"^\s*(from|import)\s+tbagsrun", text, re.M), "%s imports the launcher" % p.name
+
+
+def test_results_carry_no_machine_paths():
+    """Committed results, states, calibration results and benchmark records name no folder of the
+    machine that made them (a worktree in /tmp, a home): <repo>, <out> and the like stand for them."""
+    machine = re.compile(r"(?<![\w<])/(tmp|root|home|work)/")
+    found = []
+    for top in ("results", "states", "calibration/results", "bench"):
+        for p in sorted((ROOT / top).rglob("*")):
+            if p.is_file() and p.suffix not in (".png", ".xz", ".py") and p.stat().st_size < 5e7:
+                text = p.read_text(errors="replace")
+                found += ["%s:%d" % (p.relative_to(ROOT), text[:m.start()].count("\n") + 1)
+                          for m in machine.finditer(text)][:1]
+    assert not found, "machine paths in committed files: %s" % found[:20]

@@ -54,3 +54,17 @@ def test_a_failing_speed_stops_the_choice(tmp_path):
 def test_one_realization_no_choice(tmp_path):
     text, chosen = rate.report(make(tmp_path / "d", {1: 0.0, 2: 1.0}, n=1))
     assert chosen is None and "no spread" in text
+
+
+def test_inertial_number_from_the_sands_stress(tmp_path, monkeypatch):
+    """With contact dumps, the sand's share of F_v (load path at mid-height) sets the sand's own
+    inertial number, I / sqrt(share): a share of 0.04 makes it 5x the nominal."""
+    root = make(tmp_path / "e", {1: 0.0, 2: 1.0})
+    for f in root.rglob("I*"):
+        (f / "dump.contacts.100").write_text("")
+    monkeypatch.setattr(rate.Run, "at_step", lambda self, step, column="u_mm": 212.0 if column == "Fv_N" else 1.0)
+    monkeypatch.setattr(rate.loadpath, "by_step", lambda run: {100: {"sand-sand": (0.04 * 212.0, 0.0, 10)}})
+    rows = {r["m"]: r for r in rate.study(root)[0]}
+    assert abs(rows[1]["share"] - 0.04) < 1e-12
+    assert abs(rows[2]["inertial_sand"] - 5 * rows[2]["inertial"]) < 1e-12
+    assert "| 0.04 | 1.20e-03 |" in rate.report(root)[0]

@@ -115,3 +115,36 @@ def test_unreadable_checkpoint_falls_back_to_the_older(tmp_path, monkeypatch):
     stages.stage_run(run, "shear", 1, v, said.append, resume=True)
     assert [c.get("restart") for c in fake.calls[1:]] == ["shear.restart.2", "shear.restart.1"]
     assert any("the older checkpoint next" in s for s in said)
+
+
+def test_once_made_stage_continues_or_starts_clean(tmp_path, monkeypatch):
+    """stage_once of the shared compression: stopped with checkpoints and its stamp, it continues
+    from the newer (the older when that fails) and drops them once compress.restart is made; with
+    another stamp (other -var values) it starts clean, the other run's checkpoints removed."""
+    calls = []
+
+    def fake(folder, deck, ranks, variables, say):
+        calls.append(variables.get("compress_from"))
+        if variables.get("compress_from") == "compress.part.2":
+            raise LaunchError("unreadable checkpoint")
+        (Path(folder) / "compress.restart").write_text("made")
+    monkeypatch.setattr(stages, "stage", fake)
+    part = {"nx": 9, "compress_to": 0.9}
+    folder = tmp_path / "compress"
+    folder.mkdir()
+    (folder / ".shear.vars").write_text(stages.vars_key(part))
+    for k, name in enumerate(("compress.part.1", "compress.part.2")):
+        (folder / name).write_text(name)
+        os.utime(folder / name, (1000 + k, 1000 + k))    # .2 the newer
+    said = []
+    stages.stage_once(folder, "shear", 1, part, said.append, "compress.restart")
+    assert calls == ["compress.part.2", "compress.part.1"]
+    assert "continuing from compress.part.2 failed; the older checkpoint next" in "\n".join(said)
+    assert (folder / "compress.restart").is_file() and not list(folder.glob("compress.part.*"))
+    # another stamp: a clean start, the other run's checkpoints not used
+    calls.clear()
+    (folder / "compress.restart").unlink()
+    (folder / "compress.part.1").write_text("of another run")
+    stages.stage_once(folder, "shear", 1, dict(part, nx=11), said.append, "compress.restart")
+    assert calls == [None] and not list(folder.glob("compress.part.*"))
+    assert (folder / ".shear.vars").read_text() == stages.vars_key(dict(part, nx=11))
