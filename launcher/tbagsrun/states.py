@@ -22,7 +22,10 @@ CHUNK = 1 << 20
 # them is not restored: the stage runs instead. Other decks: their own and every include.
 READS = {"bag": ("inputs/in.bag",),
          "fill": ("inputs/in.bag", "inputs/in.fill", "inputs/sand.lmp", "inputs/fabric.lmp",
-                  "inputs/yarn.lmp", "inputs/yarn_pp_tape.table")}
+                  "inputs/yarn.lmp", "inputs/yarn_pp_tape.table"),
+         # one bag between the plates (stack.lmp only with -var bags > 1)
+         "shear": ("inputs/in.shear", "inputs/between_plates.lmp", "inputs/sand.lmp", "inputs/fabric.lmp",
+                   "inputs/yarn.lmp", "inputs/yarn_pp_tape.table")}
 
 
 def reads(deck, root=ROOT):
