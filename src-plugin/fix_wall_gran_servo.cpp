@@ -31,9 +31,6 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 namespace law = tbags::contact;
 
-// global restart record: a NaN marker, its length, then the values (files of tbags 0.2 and before
-// hold 11 values and no marker)
-static constexpr int NRESTART = 13;
 // warn when the plate force alternates from step to step by more than this fraction of it
 static constexpr double CHATTER_FRACTION = 0.01;
 
@@ -331,17 +328,19 @@ void FixWallGranServo::update_plate()
 
 double FixWallGranServo::compute_vector(int n)
 {
-  if (n >= 19) return vplate[n - 19];
-  if (n >= 13) return fface[(n - 13) / 3][(n - 13) % 3];
-  if (n < 3) return fplate[n];
-  if (n < 6) return disp[n - 3];
-  if (n == 6) return target;
-  if (n == 7) return normal_force() - target;
-  if (n == 8) return ncontact;
-  if (n == 9) return (tol > 0.0 && nconv_count >= nconv) ? 1.0 : 0.0;
-  if (n == 10) return pos;
-  if (n == 11) return measured_force();
-  return chatter.amplitude;
+  if (n >= OUT_VELOCITY) return vplate[n - OUT_VELOCITY];
+  if (n >= OUT_FACE_PLUS) return fface[(n - OUT_FACE_PLUS) / 3][(n - OUT_FACE_PLUS) % 3];
+  if (n < OUT_DISP) return fplate[n - OUT_FORCE];
+  if (n < OUT_TARGET) return disp[n - OUT_DISP];
+  switch (n) {
+    case OUT_TARGET: return target;
+    case OUT_ERROR: return normal_force() - target;
+    case OUT_CONTACTS: return ncontact;
+    case OUT_CONVERGED: return (tol > 0.0 && nconv_count >= nconv) ? 1.0 : 0.0;
+    case OUT_POSITION: return pos;
+    case OUT_FILTERED: return measured_force();
+    default: return chatter.amplitude;    // OUT_CHATTER
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -370,13 +369,25 @@ void FixWallGranServo::reset_dt()
 
 void FixWallGranServo::write_restart(FILE *fp)
 {
-  double list[NRESTART + 2] = {std::nan(""), (double) NRESTART, pos0, pos, disp[0], disp[1],
-                               disp[2], vplate[0], vplate[1], vplate[2], servo.integral, target,
-                               (double) nconv_count, servo.filtered, servo.primed ? 1.0 : 0.0};
+  double list[REC_SIZE + 2];
+  list[0] = std::nan("");
+  list[1] = (double) REC_SIZE;
+  double *rec = list + 2;
+  rec[REC_POS0] = pos0;
+  rec[REC_POS] = pos;
+  for (int d = 0; d < 3; d++) {
+    rec[REC_DISP + d] = disp[d];
+    rec[REC_VPLATE + d] = vplate[d];
+  }
+  rec[REC_INTEGRAL] = servo.integral;
+  rec[REC_TARGET] = target;
+  rec[REC_NCONV] = (double) nconv_count;
+  rec[REC_FILTERED] = servo.filtered;
+  rec[REC_PRIMED] = servo.primed ? 1.0 : 0.0;
   if (comm->me == 0) {
     int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), NRESTART + 2, fp);
+    fwrite(list, sizeof(double), REC_SIZE + 2, fp);
   }
 }
 
@@ -387,20 +398,20 @@ void FixWallGranServo::restart(char *buf)
   if (std::isnan(list[0])) {
     const int n = (int) list[1];
     list += 2;
-    if (n >= NRESTART) {
-      servo.filtered = list[11];
-      servo.primed = list[12] != 0.0;
+    if (n >= REC_SIZE) {
+      servo.filtered = list[REC_FILTERED];
+      servo.primed = list[REC_PRIMED] != 0.0;
     }
   }
-  pos0 = list[0];
-  pos = list[1];
+  pos0 = list[REC_POS0];
+  pos = list[REC_POS];
   for (int d = 0; d < 3; d++) {
-    disp[d] = list[2 + d];
-    if (mode[d] == SERVO || mode[d] == FREE) vplate[d] = list[5 + d];
+    disp[d] = list[REC_DISP + d];
+    if (mode[d] == SERVO || mode[d] == FREE) vplate[d] = list[REC_VPLATE + d];
   }
-  servo.integral = list[8];
-  if (target_var.empty() && mode[axis] == SERVO) target = list[9];
-  nconv_count = (int) list[10];
+  servo.integral = list[REC_INTEGRAL];
+  if (target_var.empty() && mode[axis] == SERVO) target = list[REC_TARGET];
+  nconv_count = (int) list[REC_NCONV];
   // a resumed run continues from a state the plate produced itself (particles it pressed into)
   placed = true;
 }

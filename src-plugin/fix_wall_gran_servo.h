@@ -81,6 +81,28 @@ class FixWallGranServo : public Fix {
   // motion of each component: FIXED, VELOCITY (number or variable), SERVO (normal only) or FREE
   // (a film: accelerated by the particles' forces and gravity)
   enum { FIXED = 0, VELOCITY = 1, SERVO = 2, FREE = 3 };
+  // compute_vector()'s elements, 0-based (doc/fix_wall_gran_servo.rst numbers them from 1)
+  enum Output : int {
+    OUT_FORCE = 0,         // 3: the particles' force on the plate
+    OUT_DISP = 3,          // 3: the plate's displacement since creation
+    OUT_TARGET = 6,        // the servo's target
+    OUT_ERROR = 7,         // normal force - target
+    OUT_CONTACTS = 8,      // touching particles
+    OUT_CONVERGED = 9,     // 1 when converged
+    OUT_POSITION = 10,     // the plate's position
+    OUT_FILTERED = 11,     // the normal force the servo acts on
+    OUT_CHATTER = 12,      // the part of the force that alternates from step to step
+    OUT_FACE_PLUS = 13,    // 3: the force of the particles on the + side
+    OUT_FACE_MINUS = 16,   // 3: on the - side
+    OUT_VELOCITY = 19,     // 3: the plate's velocity for the next step
+    OUT_SIZE = 22
+  };
+  // the global restart record's values, after its NaN marker and length (files of tbags 0.2
+  // and before: the first 11, no marker)
+  enum Record : int {
+    REC_POS0 = 0, REC_POS = 1, REC_DISP = 2, REC_VPLATE = 5, REC_INTEGRAL = 8, REC_TARGET = 9,
+    REC_NCONV = 10, REC_FILTERED = 11, REC_PRIMED = 12, REC_SIZE = 13
+  };
   int mode[3];
   double vset[3];
   std::string vvar[3];

@@ -22,7 +22,6 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 namespace law = tbags::contact;
 
-static constexpr int NVECTOR = 22;    // compute_vector's outputs
 
 /* ----------------------------------------------------------------------
    fix ID group wall/gran/servo xplane|yplane|zplane POS SIDE material E nu keyword values ...
@@ -54,7 +53,7 @@ FixWallGranServo::FixWallGranServo(LAMMPS *lmp, int narg, char **arg) :
                "+1|-1 material E nu coeff TYPE friction mu rolling mu_r restitution e ...'", STYLE);
 
   vector_flag = 1;
-  size_vector = NVECTOR;
+  size_vector = OUT_SIZE;
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
