@@ -114,16 +114,7 @@ def stage_once(folder, deck, ranks, variables, say, product):
             if states.restore(folder, deck, key, name, say):
                 break
     tries = resumed.once_checkpoints(folder, product) if stamp.is_file() and stamp.read_text() == key else []
-    for k, (name, extra) in enumerate(tries):
-        say("tbags shear: %s in %s: continuing from its checkpoint %s" % (deck, folder, name))
-        resumed.set_aside(folder, deck)
-        try:
-            stage(folder, deck, ranks, dict(variables, **extra), say)
-        except LaunchError as e:
-            if k + 1 == len(tries):
-                raise
-            say("%s\n  (continuing from %s failed; the older checkpoint next)" % (e, name))
-            continue
+    if from_checkpoints(folder, deck, ranks, variables, say, tries, "continuing from its checkpoint"):
         resumed.drop_once_checkpoints(folder, product)
         return
     (folder / product).unlink(missing_ok=True)
@@ -132,6 +123,24 @@ def stage_once(folder, deck, ranks, variables, say, product):
     stamp.write_text(key)    # before the run: its checkpoints belong to these variables
     stage(folder, deck, ranks, variables, say)
     resumed.drop_once_checkpoints(folder, product)
+
+
+def from_checkpoints(folder, deck, ranks, variables, say, tries, doing):
+    """stage() continued from the first of tries [(checkpoint, its -var values)] that works (the
+    interrupted run's log and screen set aside first); False when there is none. The last one's
+    failure stops the launcher."""
+    for k, (name, extra) in enumerate(tries):
+        say("tbags shear: %s in %s: %s %s" % (deck, folder, doing, name))
+        resumed.set_aside(folder, deck)
+        try:
+            stage(folder, deck, ranks, dict(variables, **extra), say)
+        except LaunchError as e:
+            if k + 1 == len(tries):
+                raise
+            say("%s\n  (from %s it failed; the older checkpoint next)" % (e, name))
+            continue
+        return True
+    return False
 
 
 def vars_key(variables):
@@ -154,17 +163,7 @@ def stage_run(folder, deck, ranks, variables, say, resume=False, origin=""):
         if resumed.finished(folder, deck):
             say("tbags shear: %s in %s: finished before, kept" % (deck, folder))
             return
-        tries = resumed.checkpoints(folder, deck)
-        for k, (name, extra) in enumerate(tries):
-            say("tbags shear: %s in %s: resuming from %s" % (deck, folder, name))
-            resumed.set_aside(folder, deck)
-            try:
-                stage(folder, deck, ranks, dict(variables, **extra), say)
-            except LaunchError as e:
-                if k + 1 == len(tries):
-                    raise
-                say("%s\n  (resuming from %s failed; the older checkpoint next)" % (e, name))
-                continue
+        if from_checkpoints(folder, deck, ranks, variables, say, resumed.checkpoints(folder, deck), "resuming from"):
             resumed.merge_csv(folder / resumed.CSV[deck])
             return
     kept = [name for name, _ in resumed.checkpoints(folder, deck)]

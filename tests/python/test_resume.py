@@ -139,7 +139,7 @@ def test_once_made_stage_continues_or_starts_clean(tmp_path, monkeypatch):
     said = []
     stages.stage_once(folder, "shear", 1, part, said.append, "compress.restart")
     assert calls == ["compress.part.2", "compress.part.1"]
-    assert "continuing from compress.part.2 failed; the older checkpoint next" in "\n".join(said)
+    assert "(from compress.part.2 it failed; the older checkpoint next)" in "\n".join(said)
     assert (folder / "compress.restart").is_file() and not list(folder.glob("compress.part.*"))
     # another stamp: a clean start, the other run's checkpoints not used
     calls.clear()
