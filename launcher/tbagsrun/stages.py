@@ -99,8 +99,8 @@ def stage_once(folder, deck, ranks, variables, say, product):
     """stage(), unless an earlier call made `product` in folder with the same variables (a stamp
     beside it) or a committed state (states.py) holds it, so that a long stage that finished is
     not run again. A stage stopped before its product continues from its own checkpoints (the
-    shared compression's, resume.once_checkpoints; or a committed one) when its stamp, written
-    before it ran, is this call's."""
+    shared compression's, resume.once_checkpoints) when its stamp, written before it ran, is
+    this call's."""
     folder = Path(folder)
     stamp = folder / (".%s.vars" % deck)
     key = vars_key(variables)
@@ -109,10 +109,6 @@ def stage_once(folder, deck, ranks, variables, say, product):
     if (folder / product).is_file() and stamp.is_file() and stamp.read_text() == key:
         say("tbags shear: %s in %s: done before, reused" % (deck, folder))
         return
-    if not (folder / product).is_file() and not resumed.once_checkpoints(folder, product):
-        for name in resumed.ONCE_CHECKPOINTS.get(product, ()):
-            if states.restore(folder, deck, key, name, say):
-                break
     tries = resumed.once_checkpoints(folder, product) if stamp.is_file() and stamp.read_text() == key else []
     if from_checkpoints(folder, deck, ranks, variables, say, tries, "continuing from its checkpoint"):
         resumed.drop_once_checkpoints(folder, product)
