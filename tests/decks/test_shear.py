@@ -129,7 +129,9 @@ def test_loads_share_the_start_of_their_compression(filled, tmp_path):
 @pytest.mark.parametrize("var,message", [
     ({"compress_from": "nothere.restart"}, "no compression checkpoint nothere.restart"),
     ({"compress_to": 0.99}, "compress_to must be below 0.98"),
-    ({"compress_to": 0.5, "compress_from": "x"}, "compress_to and compress_from exclude each other")])
+    ({"compress_to": 0.5, "compress_from": "x"}, "no compression checkpoint x"),
+    ({"compress_to": 0.5, "compress_every": 0}, "compress_every must be a whole number of steps >= 1"),
+    ({"compress_to": 0.5, "compress_every": 2.5}, "compress_every must be a whole number of steps >= 1")])
 def test_bad_shared_compression(filled, tmp_path, var, message):
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, fill=filled / "fill.data", **var))
     assert res.returncode != 0 and message in res.output
@@ -143,6 +145,10 @@ def test_shared_part_past_a_smaller_load_is_refused(filled, tmp_path):
     lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, Fpaper=5500, compress_to=0.5)).check()
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, Fpaper=1960, compress_from="compress.restart"))
     assert res.returncode != 0 and "where this run (F_v" in res.output and "slows down" in res.output
+    # a finished part given as a stopped one (compress_to with compress_from): refused too
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, Fpaper=5500, compress_to=0.5,
+                                                                   compress_from="compress.restart"))
+    assert res.returncode != 0 and "it is a finished part" in res.output
 
 
 @pytest.mark.parametrize("damping", ["explicit", "implicit"])
