@@ -106,10 +106,11 @@ def stage_once(folder, deck, ranks, variables, say, product):
     key = vars_key(variables)
     if not (folder / product).is_file():
         states.restore(folder, deck, key, product, say)
-    if (folder / product).is_file() and stamp.is_file() and stamp.read_text() == key:
+    stamped = stamp.is_file() and stamp.read_text() == key
+    if (folder / product).is_file() and stamped:
         say("tbags shear: %s in %s: done before, reused" % (deck, folder))
         return
-    tries = resumed.once_checkpoints(folder, product) if stamp.is_file() and stamp.read_text() == key else []
+    tries = resumed.once_checkpoints(folder, product) if stamped else []
     if from_checkpoints(folder, deck, ranks, variables, say, tries, "continuing from its checkpoint"):
         resumed.drop_once_checkpoints(folder, product)
         return

@@ -101,7 +101,8 @@ def study(root):
             ok_so_far = ok_so_far and bool(passed)
             if ok_so_far:
                 chosen = m
-        share = np.nanmean([sand_share(f) for f in fs]) if any(Run(f).steps("contacts") for f in fs) else np.nan
+        shares = [x for x in map(sand_share, fs) if not np.isnan(x)]    # runs with contact dumps
+        share = float(np.mean(shares)) if shares else np.nan
         inertial = np.nanmean([inertial_number(f) for f in fs])
         rows.append(dict(m=m, n=len(fs), inertial=inertial, share=share, inertial_sand=inertial / np.sqrt(share),
                          dS=c["S_N"][0], sS=c["S_N"][1], dw=c["w_mm"][0], sw=c["w_mm"][1],

@@ -167,9 +167,8 @@ def test_stopped_compression_continues_from_its_checkpoint(tmp_path):
     straight = lmprun.run(lmprun.INPUTS / "in.shear", tmp_path / "straight", variables=part).check().output
     line = re.search(r"^COMPRESSION PART: F_v (\S+) N .* after (\d+) steps, w (\S+) mm", straight, re.M)
     n_steps = int(line.group(2))
-    # a stop after the last checkpoint: the folder as the stopped stage left it (its stamp, the
-    # checkpoint, no product)
-    # checkpoint (the newer of the two, unless written at the step the part ended)
+    # a stop after the last checkpoint (the newer of the two, unless written at the step the part
+    # ended): the folder as the stopped stage left it (its stamp, the checkpoint, no product)
     parts = sorted((tmp_path / "straight").glob("compress.part.[12]"), key=lambda f: f.stat().st_mtime)
     use, last = (parts[-1], n_steps // 1000 * 1000) if n_steps % 1000 else (parts[-2], n_steps - 1000)
     assert last > 0, "the tiny bag's compression took fewer steps than one checkpoint"
