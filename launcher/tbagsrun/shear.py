@@ -81,8 +81,7 @@ def shared_compression(preset, user, engine):
     if any(x != rest[0] for x in rest) or any("Fpaper" not in r.variables for r in runs):
         return None
     lightest = min(runs, key=lambda r: r.variables["Fpaper"])
-    return Run("compress", lightest.deck, {k: v for k, v in dict(lightest.variables, compress_to=fraction).items()
-                                           if k not in MOTION})
+    return Run("compress", lightest.deck, dict(lightest.variables, compress_to=fraction))    # see part_variables
 
 
 def plan(preset, out, user, engine="lammps"):
