@@ -51,7 +51,8 @@ TBAGS_TARGET_AVX2 bool batch_law_avx2(Batch &b, int n, double dt, bool clip,
 #endif
 
 // the build chosen at run time (avx2), the history integrated or not (integrate: not in a run's
-// set-up); SAME, SPECIAL, FAST as law::batch_law()
+// set-up, which rotates no history: there the law without FAST, one instance less); SAME,
+// SPECIAL, FAST as law::batch_law()
 template <int ROLL, bool SAME, bool SPECIAL, bool FAST>
 bool run_law(Batch &b, int n, double dt, bool clip, bool avx2, bool integrate,
              const law::Params *same)
@@ -59,10 +60,10 @@ bool run_law(Batch &b, int n, double dt, bool clip, bool avx2, bool integrate,
 #ifdef TBAGS_HAVE_AVX2_CLONE
   if (avx2)
     return integrate ? batch_law_avx2<ROLL, true, SAME, SPECIAL, FAST>(b, n, dt, clip, same)
-                     : batch_law_avx2<ROLL, false, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
+                     : batch_law_avx2<ROLL, false, SAME, SPECIAL, false>(b, n, dt, clip, same);
 #endif
   return integrate ? batch_law_baseline<ROLL, true, SAME, SPECIAL, FAST>(b, n, dt, clip, same)
-                   : batch_law_baseline<ROLL, false, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
+                   : batch_law_baseline<ROLL, false, SAME, SPECIAL, false>(b, n, dt, clip, same);
 }
 }    // namespace
 

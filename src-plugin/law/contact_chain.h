@@ -4,11 +4,13 @@
    tests/unit/test_contact_chain.cpp checks the batch against the stages chained by hand, bit
    for bit, in every variant.
 
-   The stages, in order: (1) geometry and Hertz force, (2) normal damping, (3) tangential
-   history, (4) tangential force, (5) rolling history, (6) rolling force. They run as five loops over the lanes
+   The stages, in order: (1) geometry and Hertz force, (2) normal force, (3) tangential
+   history, (4) tangential force, (5) rolling history, (6) rolling force; the damping a
+   sub-model (explicit, or implicit for the plate fix). They run as five loops over the lanes
    rather than one, so that each loop keeps few values live (no register spills) and the
-   compiler vectorises it ("#pragma omp simd" with -fopenmp-simd). Neither the baseline nor the
-   AVX2 build contracts to FMA: a lane gives the bits of a single contact.
+   compiler vectorises it (lanes.h's pragma); the State goes from one loop to the next in the
+   lanes' rows. Neither the baseline nor the AVX2 build contracts to FMA: a lane gives the bits
+   of a single contact.
 */
 #ifndef TBAGS_LAW_CONTACT_CHAIN_H
 #define TBAGS_LAW_CONTACT_CHAIN_H
@@ -25,8 +27,8 @@ namespace contact {
 // (negative: frozen, see effective_frozen()) or, for one contact (W = 1), m* and R* given in
 // meff and reff, special-bond factor, relative velocity vr = v_i - v_j, angular velocities,
 // history rows h (3, or 6 with EPSD).
-// Out: f (on i; j gets -f), torques ti and tj, h updated; for one contact also the normal
-// force fn, fne, delta, and fs, fr, r below. The rest carries values from one loop to the next.
+// Out: f (on i; j gets -f), torques ti and tj, h updated; for one contact also the State
+// (fn, fne, delta, r) and fs, fr below. The state's rows carry it from one loop to the next.
 template <int W> struct alignas(64) Lanes {
   static constexpr int N = W;
   static constexpr bool ONE = W == 1;    // one contact: m* and R* given, the parts kept
@@ -36,19 +38,96 @@ template <int W> struct alignas(64) Lanes {
   double dx[3][N], radi[N], radj[N], mi[N], mj[N], factor[N];
   double vr[3][N], wi[3][N], wj[3][N], h[6][N];
   double f[3][N], ti[3][N], tj[3][N];
-  // from the normal loop to the tangential and rolling loops
-  double n[3][N], vt[3][N], a[N], sqma[N], fn[N], delta[N], reff[N], rroll[N];
-  double meff[N], fne[N], vnnr[N];    // from the geometry loop to the normal force
-  // one contact's parts (Result): tangential force, rolling pseudo-force, centre distance
-  double fs[3][N], fr[3][N], r[N];
-  // one contact's implicit damping (Contact::hm > 0, else unused): the predicted relative
-  // velocity and angular velocity of i (a plate's is wj), hm; the predicted normal and
-  // tangential contact-point velocities (from the geometry loop)
+  // the State, row by row (lane_state())
+  double n[3][N], vt[3][N], vroll[3][N], vn[N], r[N], delta[N], a[N], meff[N], rr[N], fne[N],
+      fn[N], sqma[N];
+  double reff[N];    // one contact's R* (given)
+  // one contact's parts (Result): tangential force, rolling pseudo-force
+  double fs[3][N], fr[3][N];
+  // one contact's implicit damping (ImplicitDamping): the predicted relative velocity and
+  // angular velocity of i (a plate's is wj), hm; the predicted normal and tangential
+  // contact-point velocities (from the geometry loop)
   double vrd[3][N], wid[3][N], hm[N], vnd[N], vtd[3][N];
 };
 using Batch = Lanes<32>;    // the pair's: 32 contacts (64 took 2 % longer)
 
-// The law over contacts 0..n-1 of the lanes.
+// lane l's State from its rows (the geometry loop writes them, normal_force's loop fn and sqma)
+template <int W> TBAGS_INLINE State lane_state(const Lanes<W> &b, int l)
+{
+  State s;
+  s.n = row3(b.n, l);
+  s.vt = row3(b.vt, l);
+  s.vroll = row3(b.vroll, l);
+  s.vn = b.vn[l];
+  s.r = b.r[l];
+  s.delta = b.delta[l];
+  s.a = b.a[l];
+  s.meff = b.meff[l];
+  s.rr = b.rr[l];
+  s.fne = b.fne[l];
+  s.fn = b.fn[l];
+  s.sqma = b.sqma[l];
+  return s;
+}
+// lane l's Touch (m* and R* from the masses, the frozen-particle rule; one contact: given)
+template <int W> TBAGS_INLINE Touch lane_touch(const Lanes<W> &b, int l)
+{
+  Touch t;
+  t.dx = row3(b.dx, l);
+  t.vr = row3(b.vr, l);
+  t.wi = row3(b.wi, l);
+  t.wj = row3(b.wj, l);
+  t.radi = b.radi[l];
+  t.radj = b.radj[l];
+  if (Lanes<W>::ONE) {
+    t.meff = b.meff[l];
+    t.reff = b.reff[l];
+  } else {
+    effective_frozen(b.mi[l], b.mj[l], b.radi[l], b.radj[l], t.meff, t.reff);
+  }
+  return t;
+}
+
+// The normal and tangential damping over the lanes, as two sub-models of the chain: explicit
+// (against the half step's velocities, as stock: the state's own) and implicit (one contact of
+// the plate fix with Contact::hm > 0: against the end of the step's velocities, predicted from
+// i's velocities b.vrd, b.wid in the geometry loop; implicit_normal(), implicit_tangential()).
+struct ExplicitDamping {
+  template <int W> static TBAGS_INLINE void predict(Lanes<W> &, int, const State &, const Touch &) {}
+  template <int W> static TBAGS_INLINE void normal(const Params &, const Lanes<W> &, int, State &) {}
+  template <int W>
+  static TBAGS_INLINE void tangential(const Params &, const Lanes<W> &, int, const vec::V3 &, State &)
+  {
+  }
+};
+struct ImplicitDamping {
+  template <int W>
+  static TBAGS_INLINE void predict(Lanes<W> &b, int l, const State &s, const Touch &t)
+  {
+    double vn;
+    vec::V3 vt;
+    contact_velocity(s.n, t.radi, t.radj, row3(b.vrd, l), row3(b.wid, l), t.wj, vn, vt);
+    b.vnd[l] = vn;
+    set_row3(b.vtd, l, vt);
+  }
+  template <int W> static TBAGS_INLINE Predicted predicted(const Lanes<W> &b, int l)
+  {
+    return Predicted{b.vnd[l], row3(b.vtd, l), b.hm[l]};
+  }
+  template <int W>
+  static TBAGS_INLINE void normal(const Params &p, const Lanes<W> &b, int l, State &s)
+  {
+    implicit_normal(p, predicted(b, l), s);
+  }
+  template <int W>
+  static TBAGS_INLINE void tangential(const Params &p, const Lanes<W> &b, int l, const vec::V3 &ht,
+                                      State &s)
+  {
+    implicit_tangential(p, predicted(b, l), ht, s);
+  }
+};
+
+// The law over contacts 0..n-1 of the lanes: the stages of contact_law.h, one loop each or two.
 //   ROLL     the rolling model of every contact (Rolling)
 //   UPDATE   integrate the histories (false in a run's setup)
 //   SAME     one set of constants, *same, for all contacts, with rolling on for all (mu_r > 0)
@@ -57,89 +136,62 @@ using Batch = Lanes<32>;    // the pair's: 32 contacts (64 took 2 % longer)
 //   FAST     the history rotation by its series only (tangential_history<FAST>): returns true
 //            when a contact needed the exact rotation; the caller must then run the batch again
 //            without FAST from the old history rows. When it returns false, all is the law's.
+//   Damping  ExplicitDamping or (one contact of the plate fix) ImplicitDamping
 // clip: limit_damping; wall: the contacts are with a plate (torque arm r_i, not r_i - d/2).
-template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST, int W>
+template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST, class Damping = ExplicitDamping, int W>
 TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Params *same,
                             bool wall = false)
 {
   using vec::V3;
+  using Rolling = typename RollingModel<ROLL>::type;
+  constexpr bool ONE = Lanes<W>::ONE;
   // 64 bits like the lanes: a 32-bit flag makes the vectoriser take 8 lanes (and spill)
   long long redo = 0;
   // loop 1: geometry and Hertz force (stage 1)
   TBAGS_PRAGMA_SIMD
   for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
-    double meff, reff;
-    if (Lanes<W>::ONE) {
-      meff = b.meff[l];
-      reff = b.reff[l];
-    } else {
-      effective_frozen(b.mi[l], b.mj[l], b.radi[l], b.radj[l], meff, reff);
-    }
-    // r^2 and r_i + r_j as in the gather (same operations, same bits)
-    const double dx0 = b.dx[0][l], dx1 = b.dx[1][l], dx2 = b.dx[2][l];
-    const double rsq = dx0 * dx0 + dx1 * dx1 + dx2 * dx2;
-    LaneOut o;
-    V3 nv, vt;
-    double vnnr, a;
-    contact_geometry(p, V3{dx0, dx1, dx2}, rsq, b.radi[l] + b.radj[l], reff, b.radi[l],
-                     b.radj[l], row3(b.vr, l), row3(b.wi, l), row3(b.wj, l), o, nv, vnnr, vt, a);
-    set_row3(b.n, l, nv);
-    set_row3(b.vt, l, vt);
-    b.a[l] = a;
-    b.meff[l] = meff;
-    b.fne[l] = o.fne;
-    b.vnnr[l] = vnnr;
-    b.delta[l] = o.delta;
-    b.reff[l] = reff;
-    b.rroll[l] = rolling_radius(p, reff, b.radi[l], b.radj[l], wall);
-    if constexpr (Lanes<W>::ONE) {
-      b.r[l] = o.r;
-      double vnd = vnnr;
-      V3 vtd = vt;
-      if (b.hm[l] > 0.0)
-        contact_velocity(nv, b.radi[l], b.radj[l], row3(b.vrd, l), row3(b.wid, l),
-                         row3(b.wj, l), vnd, vtd);
-      b.vnd[l] = vnd;
-      set_row3(b.vtd, l, vtd);
-    }
+    const Touch t = lane_touch(b, l);
+    const State s = geometry(p, t, wall);
+    set_row3(b.n, l, s.n);
+    set_row3(b.vt, l, s.vt);
+    if (ROLL != ROLLING_NONE) set_row3(b.vroll, l, s.vroll);
+    b.vn[l] = s.vn;
+    b.delta[l] = s.delta;
+    b.a[l] = s.a;
+    b.meff[l] = s.meff;
+    b.rr[l] = s.rr;
+    b.fne[l] = s.fne;
+    if (ONE) b.r[l] = s.r;
+    Damping::predict(b, l, s, t);
   }
-  // loop 2: normal damping (stage 2; its square root here, where the divider has time) and
+  // loop 2: normal force (stage 2; its square root here, where the divider has time) and
   // tangential history (stage 3)
   TBAGS_PRAGMA_SIMD_OR_REDO
   for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
-    double sqma, vnnr = b.vnnr[l];
-    if constexpr (Lanes<W>::ONE) {    // implicit damping: the end of the step's normal velocity
-      if (b.hm[l] > 0.0)
-        vnnr = implicit_velocity(b.vnd[l], b.fne[l], p.cn * std::sqrt(b.meff[l] * b.a[l]),
-                                 b.hm[l]);
-    }
-    const double fn = normal_force(p, clip, b.meff[l], b.a[l], b.fne[l], vnnr, sqma);
-    b.sqma[l] = sqma;
-    b.fn[l] = fn;
+    State s = lane_state(b, l);
+    Damping::normal(p, b, l, s);
+    normal_force(p, clip, s);
+    b.sqma[l] = s.sqma;
+    b.fn[l] = s.fn;
     if (UPDATE) {
       V3 ht = row3(b.h, l);
-      redo |= tangential_history<FAST>(p, row3(b.n, l), row3(b.vt, l), b.a[l], fn, dt, ht);
+      redo |= tangential_history<FAST>(p, s, dt, ht);
       set_row3(b.h, l, ht);
     }
   }
-  // loop 3: tangential force (stage 4; torques without rolling)
+  // loop 3: tangential force (stage 4), force and torques (rolling's added below)
   TBAGS_PRAGMA_SIMD
   for (int l = 0; l < n; l++) {
     const Params &p = SAME ? *same : *b.p[l];
+    State s = lane_state(b, l);
     V3 ht = row3(b.h, l);
-    V3 vt = row3(b.vt, l);
-    if constexpr (Lanes<W>::ONE) {    // implicit damping: the end of the step's tangential velocity
-      if (b.hm[l] > 0.0)
-        vt = implicit_velocity(row3(b.vtd, l), (-p.kt * b.a[l]) * ht, p.ct * b.sqma[l],
-                               TANGENTIAL_COMPLIANCE * b.hm[l]);
-    }
-    LaneOut o;
-    tangential_force(p, row3(b.n, l), vt, b.a[l], b.sqma[l], b.fn[l], b.delta[l], b.radi[l],
-                     b.radj[l], wall, ht, o);
+    Damping::tangential(p, b, l, ht, s);
+    const V3 fs = tangential_force(p, s, ht);
     set_row3(b.h, l, ht);
-    if (Lanes<W>::ONE) set_row3(b.fs, l, o.fs);
+    if (ONE) set_row3(b.fs, l, fs);
+    const Forces o = contact_forces(s, fs, b.radi[l], b.radj[l], wall);
     const double fl = SPECIAL ? b.factor[l] : 1.0;
     set_row3(b.f, l, fl * o.f);
     if constexpr (ROLL == ROLLING_NONE) {
@@ -150,34 +202,35 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
       set_row3(b.tj, l, o.tj);
     }
   }
-  if (ROLL == ROLLING_NONE) return redo != 0;
-  // loop 4: rolling history (stage 5, EPSD)
-  if (ROLL == ROLLING_EPSD && UPDATE) {
-    TBAGS_PRAGMA_SIMD_OR_REDO
+  if constexpr (ROLL != ROLLING_NONE) {
+    // loop 4: rolling history (stage 5)
+    if constexpr (Rolling::HISTORY > 0 && UPDATE) {
+      TBAGS_PRAGMA_SIMD_OR_REDO
+      for (int l = 0; l < n; l++) {
+        const Params &p = SAME ? *same : *b.p[l];
+        const State s = lane_state(b, l);
+        V3 hr = row3(b.h + 3, l);
+        redo |= Rolling::template history<SAME, FAST>(p, s, dt, hr);
+        set_row3(b.h + 3, l, hr);
+      }
+    }
+    // loop 5: rolling force and torque (stage 6)
+    TBAGS_PRAGMA_SIMD
     for (int l = 0; l < n; l++) {
       const Params &p = SAME ? *same : *b.p[l];
-      V3 hr = row3(b.h + 3, l);
-      redo |= rolling_history<SAME, FAST>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]),
-                                          b.rroll[l], row3(b.wi, l), row3(b.wj, l), dt, hr);
-      set_row3(b.h + 3, l, hr);
+      const State s = lane_state(b, l);
+      V3 hr{0.0, 0.0, 0.0};
+      if constexpr (Rolling::HISTORY > 0) hr = row3(b.h + 3, l);
+      const V3 fr = Rolling::template force<SAME>(p, s, hr);
+      if constexpr (Rolling::HISTORY > 0) set_row3(b.h + 3, l, hr);
+      if (ONE) set_row3(b.fr, l, fr);
+      const bool on = rolling_acts<SAME>(p);
+      const V3 troll = rolling_torque(s, fr);
+      const V3 ti = row3(b.ti, l), tj = row3(b.tj, l);
+      const double fl = SPECIAL ? b.factor[l] : 1.0;
+      set_row3(b.ti, l, fl * vec::select(on, ti + troll, ti));
+      set_row3(b.tj, l, fl * vec::select(on, tj - troll, tj));
     }
-  }
-  // loop 5: rolling force and torque (stage 6)
-  TBAGS_PRAGMA_SIMD
-  for (int l = 0; l < n; l++) {
-    const Params &p = SAME ? *same : *b.p[l];
-    V3 hr{0.0, 0.0, 0.0};
-    if constexpr (ROLL == ROLLING_EPSD) hr = row3(b.h + 3, l);
-    V3 fr, troll;
-    bool on;
-    rolling_force<ROLL, SAME>(p, row3(b.n, l), b.a[l], std::fabs(b.fn[l]), b.rroll[l],
-                              row3(b.wi, l), row3(b.wj, l), hr, fr, troll, on);
-    if (ROLL == ROLLING_EPSD) set_row3(b.h + 3, l, hr);
-    if (Lanes<W>::ONE) set_row3(b.fr, l, fr);
-    const V3 ti = row3(b.ti, l), tj = row3(b.tj, l);
-    const double fl = SPECIAL ? b.factor[l] : 1.0;
-    set_row3(b.ti, l, fl * vec::select(on, ti + troll, ti));
-    set_row3(b.tj, l, fl * vec::select(on, tj - troll, tj));
   }
   return redo != 0;
 }
@@ -201,14 +254,19 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
   set_row3(b.h, 0, load3(hist));
   set_row3(b.h + 3, 0, ROLL == ROLLING_EPSD ? load3(hist + 3) : V3{0.0, 0.0, 0.0});
   set_row3(b.fr, 0, V3{0.0, 0.0, 0.0});    // no rolling: the chain leaves it
+  set_row3(b.vroll, 0, V3{0.0, 0.0, 0.0});
+  b.fn[0] = b.sqma[0] = 0.0;
   const bool implicit = c.hm > 0.0;    // damping against the end of the step's velocities
-  b.hm[0] = c.hm;
-  set_row3(b.vrd, 0, load3(implicit ? c.vdi : c.vi) - load3(c.vj));
-  set_row3(b.wid, 0, load3(implicit ? c.wdi : c.wi));
-  if (update)
-    batch_law<ROLL, true, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
-  else
-    batch_law<ROLL, false, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+  if (implicit) {
+    b.hm[0] = c.hm;
+    set_row3(b.vrd, 0, load3(c.vdi) - load3(c.vj));
+    set_row3(b.wid, 0, load3(c.wdi));
+    if (update) batch_law<ROLL, true, false, false, false, ImplicitDamping>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+    else batch_law<ROLL, false, false, false, false, ImplicitDamping>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+  } else {
+    if (update) batch_law<ROLL, true, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+    else batch_law<ROLL, false, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+  }
   store3(row3(b.h, 0), hist);
   if (ROLL == ROLLING_EPSD) store3(row3(b.h + 3, 0), hist + 3);
   store3(row3(b.f, 0), o.f);

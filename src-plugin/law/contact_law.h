@@ -1,8 +1,12 @@
 /* T-BAGS DEM toolkit: the Hertz-Mindlin contact law with restitution damping, Coulomb friction
-   and rolling resistance. Pure header, no LAMMPS types: the constants and the stages of the
-   law, each a branch-free function of values (conditions are selects) so that a contact can run
-   in a SIMD lane; contact_chain.h chains them, once, for pair gran/hertz/rolling and fix
-   wall/gran/servo (a plate is a particle of infinite radius and mass). Unit-tested alone.
+   and rolling resistance. Pure header, no LAMMPS types: the constants (Params, per type pair),
+   one contact's input (Touch) and State, and the stages of the law, each a branch-free function
+   f(Params, State, history) (conditions are selects) so that a contact can run in a SIMD lane:
+   geometry, normal_force, tangential_history, tangential_force, contact_forces, the rolling
+   sub-models (NoRolling, EpsdRolling, CdtRolling: history and force) and rolling_torque, and the
+   implicit damping's implicit_normal and implicit_tangential. contact_chain.h chains them, once,
+   for pair gran/hertz/rolling and fix wall/gran/servo (a plate is a particle of infinite radius
+   and mass). Unit-tested alone.
 
    Per contact (overlap d = r_i + r_j - |x_i - x_j| > 0, unit normal n from j to i):
      a    = sqrt(R* d)                         contact radius, R* = R_i R_j / (R_i + R_j)
@@ -28,9 +32,6 @@ namespace tbags {
 namespace contact {
 
 enum Rolling : int { ROLLING_NONE = 0, ROLLING_EPSD = 1, ROLLING_CDT = 2 };
-
-// history doubles per contact: tangential displacement (3) and, for EPSD, rolling displacement (3)
-inline int history_size(int rolling) { return rolling == ROLLING_EPSD ? 6 : 3; }
 
 // relative threshold below which the history is not rotated onto the tangent plane (as stock)
 constexpr double FRAME_EPS = 1e-10;
@@ -176,56 +177,69 @@ TBAGS_INLINE double rolling_radius(const Params &p, double reff, double radi, do
   return (p.roll_mean > 0.0 && !wall) ? mean : reff;
 }
 
-// The stages' outputs for one contact (contact_geometry() and tangential_force() fill them).
-// Everywhere below: dx = x_i - x_j (a plate: as Contact), vr = v_i - v_j, angular velocities
-// wi, wj; ht (tangential) and hr (rolling, EPSD) the history; clip: p.limit_damping; rolling
-// acts where p.mur > 0 (make_params: p.rolling is then the model).
-struct LaneOut {
-  vec::V3 f, ti, tj, fs, fr;
-  double fn, fne, delta, r;
+// One contact as the host gives it (the pair's batch, the plate fix): dx = x_i - x_j (a plate:
+// from its contact point to x_i), vr = v_i - v_j, the angular velocities, the radii (a plate's:
+// 0), m* and R* (effective(), effective_frozen(); a plate: m_i and r_i).
+struct Touch {
+  vec::V3 dx, vr, wi, wj;
+  double radi, radj, meff, reff;
 };
 
-// Normal force (stage 2): the Hertz force fne plus restitution damping against the normal
-// relative velocity vnnr (n . (v_i - v_j)), clipped at zero with clip; sqma = sqrt(m* a).
-TBAGS_INLINE double normal_force(const Params &p, bool clip, double meff, double a, double fne,
-                                 double vnnr, double &sqma)
-{
-  sqma = std::sqrt(meff * a);
-  const double fn = fne - p.cn * sqma * vnnr;
-  return (clip & (fn < 0.0)) ? 0.0 : fn;
-}
+// What the stages share about one contact: geometry() fills it, normal_force() adds fn and
+// sqma; the tangential and rolling stages read it. A value (no stage keeps its address): the
+// batch's loops rebuild it from their lanes and the vectoriser keeps its fields in registers.
+struct State {
+  vec::V3 n;        // unit normal, from j to i
+  vec::V3 vt;       // tangential relative velocity of the contact points
+  vec::V3 vroll;    // rolling velocity R_r (w_i - w_j) x n
+  double vn;        // normal relative velocity n . (v_i - v_j)
+  double r;         // centre distance
+  double delta;     // overlap
+  double a;         // contact radius sqrt(R* delta)
+  double meff;      // m*
+  double rr;        // rolling radius R_r (rolling_radius())
+  double fne;       // elastic (Hertz) normal force
+  double fn = 0.0;      // total normal force (elastic + damping), normal_force()
+  double sqma = 0.0;    // sqrt(m* a), normal_force()
+};
 
 // The relative velocity at the contact point of unit normal n (from j to i): its normal part
-// vnnr and tangential part vtr.
+// vn and tangential part vt.
 TBAGS_INLINE void contact_velocity(const vec::V3 &n, double radi, double radj, const vec::V3 &vr,
-                                   const vec::V3 &wi, const vec::V3 &wj, double &vnnr,
-                                   vec::V3 &vtr)
+                                   const vec::V3 &wi, const vec::V3 &wj, double &vn, vec::V3 &vt)
 {
   using namespace vec;
-  vnnr = dot(vr, n);
+  vn = dot(vr, n);
   const V3 wr = radi * wi + radj * wj;
-  vtr = (vr - vnnr * n) - cross(wr, n);
+  vt = (vr - vn * n) - cross(wr, n);
 }
 
-// Geometry (stage 1): unit normal n, normal and tangential relative velocity vnnr and vtr
-// at the contact point, contact radius a and the Hertz force (o.fne, o.delta, o.r set).
-TBAGS_INLINE void contact_geometry(const Params &p, const vec::V3 &dx, double rsq, double radsum,
-                                   double reff, double radi, double radj, const vec::V3 &vr,
-                                   const vec::V3 &wi, const vec::V3 &wj, LaneOut &o, vec::V3 &n,
-                                   double &vnnr, vec::V3 &vtr, double &a)
+// Stage 1, geometry and Hertz force: the state of a touching contact (wall: t is a plate's).
+TBAGS_INLINE State geometry(const Params &p, const Touch &t, bool wall)
 {
   using namespace vec;
-  const double r = std::sqrt(rsq);
-  const double rinv = 1.0 / r;
-  const double delta = radsum - r;
-  n = rinv * dx;
-  contact_velocity(n, radi, radj, vr, wi, wj, vnnr, vtr);
+  State s;
+  // r^2 as (dx0^2 + dx1^2) + dx2^2: the same bits as the host's touching test
+  s.r = std::sqrt(dot(t.dx, t.dx));
+  const double rinv = 1.0 / s.r;
+  s.delta = (t.radi + t.radj) - s.r;
+  s.n = rinv * t.dx;
+  contact_velocity(s.n, t.radi, t.radj, t.vr, t.wi, t.wj, s.vn, s.vt);
+  s.a = std::sqrt(t.reff * s.delta);
+  s.fne = p.kn * s.a * s.delta;
+  s.meff = t.meff;
+  s.rr = rolling_radius(p, t.reff, t.radi, t.radj, wall);
+  s.vroll = s.rr * cross(t.wi - t.wj, s.n);
+  return s;
+}
 
-  // normal: Hertz
-  a = std::sqrt(reff * delta);
-  o.fne = p.kn * a * delta;
-  o.delta = delta;
-  o.r = r;
+// Stage 2, normal force: Hertz plus restitution damping against s.vn, clipped at zero with clip
+// (p.limit_damping); sets s.fn and s.sqma = sqrt(m* a).
+TBAGS_INLINE void normal_force(const Params &p, bool clip, State &s)
+{
+  s.sqma = std::sqrt(s.meff * s.a);
+  const double fn = s.fne - p.cn * s.sqma * s.vn;
+  s.fn = (clip & (fn < 0.0)) ? 0.0 : fn;
 }
 
 // A spring history h (stiffness k, force cap crit) rotated onto the tangent plane of the unit
@@ -244,98 +258,144 @@ TBAGS_INLINE vec::V3 rotate_history(const vec::V3 &h, const vec::V3 &n, double k
   return select(rot, hp, h);
 }
 
-// Tangential spring history (stage 3, when the history is integrated): rotated onto the tangent plane and
-// integrated. FAST (the pair's SIMD loop): the rotation only by the series; returns true when
-// the tilt is too large for it (rare): the caller must then redo the contact without FAST,
-// from the old history. When it returns false, ht is bit for bit the full law's.
+// Stage 3, tangential history (when integrated): ht rotated onto the tangent plane and
+// integrated with s.vt. FAST (the pair's SIMD loop): the rotation only by the series; returns
+// true when the tilt was too large for it (rare): the caller must then redo the contact without
+// FAST, from the old history. When it returns false, ht is bit for bit the full law's.
 template <bool FAST = false>
-TBAGS_INLINE bool tangential_history(const Params &p, const vec::V3 &n, const vec::V3 &vtr,
-                                     double a, double fn, double dt, vec::V3 &ht)
+TBAGS_INLINE bool tangential_history(const Params &p, const State &s, double dt, vec::V3 &ht)
 {
-  bool big = false;    // the rotation needs onto_plane_exact()
-  ht = rotate_history<FAST>(ht, n, p.kt * a, p.mu * std::fabs(fn), big) + dt * vtr;
+  bool big = false;
+  ht = rotate_history<FAST>(ht, s.n, p.kt * s.a, p.mu * std::fabs(s.fn), big) + dt * s.vt;
   return FAST && big;
 }
 
-// Tangential force (stage 4) from the (integrated) history: incremental Mindlin spring +
-// damping, Coulomb cap (the history reset on sliding); o.f, o.ti, o.tj (without rolling), o.fs;
-// o.fr zero.
-TBAGS_INLINE void tangential_force(const Params &p, const vec::V3 &n, const vec::V3 &vtr,
-                                   double a, double sqma, double fn, double delta, double radi,
-                                   double radj, bool wall, vec::V3 &ht, LaneOut &o)
+// Stage 4, tangential force from the (integrated) history ht: incremental Mindlin spring and
+// damping against s.vt, Coulomb cap |F_t| <= mu |F_n| (ht reset to the cap on sliding).
+TBAGS_INLINE vec::V3 tangential_force(const Params &p, const State &s, vec::V3 &ht)
 {
   using namespace vec;
-  const double damp_t = p.ct * sqma;
-  const double kts = p.kt * a;
-  const double fscrit = p.mu * std::fabs(fn);
-  V3 fs = (-damp_t) * vtr - kts * ht;
+  const double damp_t = p.ct * s.sqma;
+  const double kts = p.kt * s.a;
+  const double fscrit = p.mu * std::fabs(s.fn);
+  V3 fs = (-damp_t) * s.vt - kts * ht;
   const double fs2 = dot(fs, fs);
   // sliding: |fs| > mu |F_n| (squares: no sqrt when sticking)
   const bool slide = fs2 > fscrit * fscrit;
   const bool hnz = dot(ht, ht) != 0.0;    // |xi| != 0
-  const double s = fscrit / std::sqrt(fs2);
+  const double c = fscrit / std::sqrt(fs2);
   // on sliding, xi such that the spring + damping force is the capped force
-  ht = select(slide & hnz, (-1.0 / kts) * (s * fs + damp_t * vtr), ht);
-  fs = select(slide, hnz ? s * fs : V3{0.0, 0.0, 0.0}, fs);
-
-  o.f = fn * n + fs;
-  const V3 tor = cross(n, fs);
-  const double armi = wall ? radi : radi - 0.5 * delta;
-  const double armj = radj - 0.5 * delta;
-  o.ti = (-armi) * tor;
-  o.tj = (-armj) * tor;
-  o.fr = V3{0.0, 0.0, 0.0};
-  o.fs = fs;
+  ht = select(slide & hnz, (-1.0 / kts) * (c * fs + damp_t * s.vt), ht);
+  return select(slide, hnz ? c * fs : V3{0.0, 0.0, 0.0}, fs);
 }
 
-// EPSD rolling history (stage 5, when the history is integrated): rotated onto the tangent plane
-// and integrated with the rolling velocity R_r (w_i - w_j) x n (rr = R_r, rolling_radius()) where
-// rolling acts (p.mur > 0; ALLON: known), else left as it was. FAST: as tangential_history()
-// (returns whether the exact rotation was needed where rolling acts).
-template <bool ALLON = false, bool FAST = false>
-TBAGS_INLINE bool rolling_history(const Params &p, const vec::V3 &n, double a, double fncrit,
-                                  double rr, const vec::V3 &wi, const vec::V3 &wj, double dt,
-                                  vec::V3 &hr)
+// The force on i (j gets its opposite) and the torques of the normal and tangential forces on
+// i and j (lever arm r - delta/2, a plate's particle r_i, as stock).
+struct Forces {
+  vec::V3 f, ti, tj;
+};
+TBAGS_INLINE Forces contact_forces(const State &s, const vec::V3 &fs, double radi, double radj,
+                                   bool wall)
 {
   using namespace vec;
-  const bool on = ALLON || p.mur > 0.0;
-  const V3 vrl = rr * cross(wi - wj, n);
-  bool big = false;
-  const V3 h = rotate_history<FAST>(hr, n, p.krs * a, p.mur * fncrit, big) + dt * vrl;
-  hr = select(on, h, hr);
-  return FAST && (on & big);
+  const V3 tor = cross(s.n, fs);
+  const double armi = wall ? radi : radi - 0.5 * s.delta;
+  const double armj = radj - 0.5 * s.delta;
+  return Forces{s.fn * s.n + fs, (-armi) * tor, (-armj) * tor};
 }
 
-// Rolling resistance (stage 6; ROLL not ROLLING_NONE) from n, a, fncrit = |F_n| and, for
-// EPSD, the integrated history hr (rolling_history()): the rolling pseudo-force fr and the
-// torque troll = R_r n x fr (rr = R_r, rolling_radius(); i gets +troll, j -troll); EPSD: the
-// cap |fr| <= mu_r |F_n| (hr rescaled to it); CDT: |fr| = mu_r |F_n| against the rolling
-// velocity. on: rolling acts (p.mur > 0), else fr and troll are zero and hr is left as it was.
-template <int ROLL, bool ALLON = false>
-TBAGS_INLINE void rolling_force(const Params &p, const vec::V3 &n, double a, double fncrit,
-                                double rr, const vec::V3 &wi, const vec::V3 &wj, vec::V3 &hr,
-                                vec::V3 &fr, vec::V3 &troll, bool &on)
+// Implicit damping (fix wall/gran/servo 'damping implicit'): the damping acts against the end
+// of the step's relative velocity (implicit_velocity()) instead of the half step's. Predicted:
+// the contact-point velocities from i's velocities at the end of the step predicted from the
+// forces on i so far (contact_velocity() of them), and hm = dt/2 / m_i. The two stages replace
+// s.vn before normal_force() and s.vt after tangential_history(), before tangential_force().
+struct Predicted {
+  double vn;
+  vec::V3 vt;
+  double hm;
+};
+TBAGS_INLINE void implicit_normal(const Params &p, const Predicted &q, State &s)
 {
-  using namespace vec;
-  on = ALLON || p.mur > 0.0;
-  const double frcrit = p.mur * fncrit;
-  if (ROLL == ROLLING_EPSD) {
-    const double ks = p.krs * a;
-    V3 h = hr;
-    fr = (-ks) * h;
+  s.vn = implicit_velocity(q.vn, s.fne, p.cn * std::sqrt(s.meff * s.a), q.hm);
+}
+TBAGS_INLINE void implicit_tangential(const Params &p, const Predicted &q, const vec::V3 &ht,
+                                      State &s)
+{
+  s.vt = implicit_velocity(q.vt, (-p.kt * s.a) * ht, p.ct * s.sqma, TANGENTIAL_COMPLIANCE * q.hm);
+}
+
+// Stages 5 and 6, the rolling resistance: one sub-model per Rolling value, each with its
+// history size, the history's integration (history(), when integrated) and the rolling
+// pseudo-force fr (force()); the torque is rolling_torque(). Rolling acts where p.mur > 0
+// (ALLON: known to, for every contact): elsewhere fr is zero and the history is left as it was.
+// FAST: as tangential_history() (returns whether the exact rotation was needed where rolling acts).
+template <bool ALLON = false> TBAGS_INLINE bool rolling_acts(const Params &p)
+{
+  return ALLON || p.mur > 0.0;
+}
+
+struct NoRolling {
+  static constexpr int HISTORY = 0;
+};
+
+// EPSD (Ai et al. 2011): a spring of stiffness k_s = krs a on the rolling displacement hr,
+// capped at mu_r |F_n| (hr rescaled to the cap).
+struct EpsdRolling {
+  static constexpr int HISTORY = 3;
+  template <bool ALLON = false, bool FAST = false>
+  static TBAGS_INLINE bool history(const Params &p, const State &s, double dt, vec::V3 &hr)
+  {
+    using namespace vec;
+    const bool on = rolling_acts<ALLON>(p);
+    bool big = false;
+    const V3 h = rotate_history<FAST>(hr, s.n, p.krs * s.a, p.mur * std::fabs(s.fn), big) +
+        dt * s.vroll;
+    hr = select(on, h, hr);
+    return FAST && (on & big);
+  }
+  template <bool ALLON = false>
+  static TBAGS_INLINE vec::V3 force(const Params &p, const State &s, vec::V3 &hr)
+  {
+    using namespace vec;
+    const bool on = rolling_acts<ALLON>(p);
+    const double frcrit = p.mur * std::fabs(s.fn);
+    const V3 fr = (-p.krs * s.a) * hr;
     const double fr2 = dot(fr, fr);
     const bool cap = fr2 > frcrit * frcrit;
-    const double sr = frcrit / std::sqrt(fr2);
-    h = select(cap, sr * h, h);    // the spring at the cap: -ks (sr h) = sr fr
-    fr = select(cap, sr * fr, fr);
-    hr = select(on, h, hr);
-  } else {    // CDT: constant magnitude against the rolling velocity
-    const V3 vrl = rr * cross(wi - wj, n);
-    const double vl = std::sqrt(dot(vrl, vrl));
-    fr = select(vl > 0.0, (-frcrit / vl) * vrl, V3{0.0, 0.0, 0.0});
+    const double c = frcrit / std::sqrt(fr2);
+    hr = select(on & cap, c * hr, hr);    // the spring at the cap: -k_s (c hr) = c fr
+    return select(on, select(cap, c * fr, fr), V3{0.0, 0.0, 0.0});
   }
-  fr = select(on, fr, V3{0.0, 0.0, 0.0});
-  troll = rr * cross(n, fr);
+};
+
+// CDT: a moment of constant magnitude mu_r R_r |F_n| against the rolling velocity; no history.
+struct CdtRolling {
+  static constexpr int HISTORY = 0;
+  template <bool ALLON = false>
+  static TBAGS_INLINE vec::V3 force(const Params &p, const State &s, vec::V3 &)
+  {
+    using namespace vec;
+    const bool on = rolling_acts<ALLON>(p);
+    const double vl = std::sqrt(dot(s.vroll, s.vroll));
+    const V3 fr = select(vl > 0.0, (-p.mur * std::fabs(s.fn) / vl) * s.vroll, V3{0.0, 0.0, 0.0});
+    return select(on, fr, V3{0.0, 0.0, 0.0});
+  }
+};
+
+template <int ROLL> struct RollingModel { using type = NoRolling; };
+template <> struct RollingModel<ROLLING_EPSD> { using type = EpsdRolling; };
+template <> struct RollingModel<ROLLING_CDT> { using type = CdtRolling; };
+
+// history doubles per contact: tangential displacement (3) and the rolling model's
+inline int history_size(int rolling)
+{
+  return 3 + (rolling == ROLLING_EPSD ? EpsdRolling::HISTORY : 0);
+}
+
+// The rolling torque on i (j gets its opposite): R_r n x fr.
+TBAGS_INLINE vec::V3 rolling_torque(const State &s, const vec::V3 &fr)
+{
+  return s.rr * vec::cross(s.n, fr);
 }
 
 }    // namespace contact

@@ -17,32 +17,51 @@ using tbags::vec::V3;
 
 namespace {
 
-// The stages chained by hand, one contact (the reference): its outputs f, ti, tj, ht, hr.
+// What the reference gives for one contact.
+struct Out {
+  V3 f, ti, tj, fs, fr;
+  double fn, fne, delta, r;
+};
+
+// The stages chained by hand, one contact (the reference): its outputs, ht and hr updated.
 template <int ROLL, bool UPDATE>
-LaneOut reference_contact(const Params &p, bool clip, const V3 &dx, double radi, double radj,
-                          double meff, double reff, const V3 &vr, const V3 &wi, const V3 &wj,
-                          bool wall, double dt, V3 &ht, V3 &hr)
+Out reference_contact(const Params &p, bool clip, const Touch &t, bool wall, double dt, V3 &ht,
+                      V3 &hr)
 {
-  LaneOut o;
-  V3 n, vt;
-  double vnnr, a, sqma;
-  contact_geometry(p, dx, dx.x * dx.x + dx.y * dx.y + dx.z * dx.z, radi + radj, reff, radi, radj,
-                   vr, wi, wj, o, n, vnnr, vt, a);
-  o.fn = normal_force(p, clip, meff, a, o.fne, vnnr, sqma);
-  if (UPDATE) tangential_history(p, n, vt, a, o.fn, dt, ht);
-  tangential_force(p, n, vt, a, sqma, o.fn, o.delta, radi, radj, wall, ht, o);
-  if (ROLL != ROLLING_NONE) {
-    if (ROLL == ROLLING_EPSD && UPDATE)
-      rolling_history(p, n, a, std::fabs(o.fn), reff, wi, wj, dt, hr);
-    V3 troll;
-    bool on;
-    rolling_force<ROLL>(p, n, a, std::fabs(o.fn), reff, wi, wj, hr, o.fr, troll, on);
+  using Rolling = typename RollingModel<ROLL>::type;
+  State s = geometry(p, t, wall);
+  normal_force(p, clip, s);
+  if (UPDATE) tangential_history(p, s, dt, ht);
+  const V3 fs = tangential_force(p, s, ht);
+  const Forces c = contact_forces(s, fs, t.radi, t.radj, wall);
+  Out o{c.f, c.ti, c.tj, fs, V3{0.0, 0.0, 0.0}, s.fn, s.fne, s.delta, s.r};
+  if constexpr (ROLL != ROLLING_NONE) {
+    if constexpr (Rolling::HISTORY > 0)
+      if (UPDATE) Rolling::history(p, s, dt, hr);
+    o.fr = Rolling::force(p, s, hr);
+    const V3 troll = rolling_torque(s, o.fr);
+    const bool on = rolling_acts(p);
     o.ti = tbags::vec::select(on, o.ti + troll, o.ti);
     o.tj = tbags::vec::select(on, o.tj - troll, o.tj);
   }
   return o;
 }
 
+// A contact's Touch from its parts.
+Touch touch(const V3 &dx, const V3 &vr, const V3 &wi, const V3 &wj, double radi, double radj,
+            double meff, double reff)
+{
+  Touch t;
+  t.dx = dx;
+  t.vr = vr;
+  t.wi = wi;
+  t.wj = wj;
+  t.radi = radi;
+  t.radj = radj;
+  t.meff = meff;
+  t.reff = reff;
+  return t;
+}
 
 // Two materials (sand and a yarn-like polymer), rolling on in the first and both ways for the
 // second when mur2 is 0; limit_damping as given.
@@ -121,9 +140,9 @@ bool check_batch(const Materials &m, int n, double tilt, bool clip, unsigned see
     if (a.mj[l] < 0.0) meff = mi;
     const V3 dx = row3(a.dx, l);
     V3 ht = row3(a.h, l), hr = row3(a.h + 3, l);
-    const LaneOut o = reference_contact<ROLL, UPDATE>(p, clip, dx, a.radi[l], a.radj[l], meff, reff,
-                                                      row3(a.vr, l), row3(a.wi, l), row3(a.wj, l),
-                                                      false, dt, ht, hr);
+    const Out o = reference_contact<ROLL, UPDATE>(
+        p, clip, touch(dx, row3(a.vr, l), row3(a.wi, l), row3(a.wj, l), a.radi[l], a.radj[l], meff, reff),
+        false, dt, ht, hr);
     const double fl = SPECIAL ? a.factor[l] : 1.0;
     const V3 want[5] = {fl * o.f, fl * o.ti, fl * o.tj, ht, hr};
     const V3 got[5] = {row3(b->f, l), row3(b->ti, l), row3(b->tj, l), row3(b->h, l),
@@ -221,13 +240,10 @@ template <int ROLL> void check_one_contact(bool update)
     Result o;
     compute(m.p[k % 2], c, hist, update, o);
     V3 ht = row3(b->h, 0), hr = row3(b->h + 3, 0);
-    const LaneOut want = update
-        ? reference_contact<ROLL, true>(m.p[k % 2], false, tbags::vec::load3(dx), c.radi, radj,
-                                        meff, reff, tbags::vec::load3(vi), tbags::vec::load3(wi),
-                                        tbags::vec::load3(wj), wall, 1e-6, ht, hr)
-        : reference_contact<ROLL, false>(m.p[k % 2], false, tbags::vec::load3(dx), c.radi, radj,
-                                         meff, reff, tbags::vec::load3(vi), tbags::vec::load3(wi),
-                                         tbags::vec::load3(wj), wall, 1e-6, ht, hr);
+    using tbags::vec::load3;
+    const Touch t = touch(load3(dx), load3(vi), load3(wi), load3(wj), c.radi, radj, meff, reff);
+    const Out want = update ? reference_contact<ROLL, true>(m.p[k % 2], false, t, wall, 1e-6, ht, hr)
+                            : reference_contact<ROLL, false>(m.p[k % 2], false, t, wall, 1e-6, ht, hr);
     const V3 w[7] = {want.f, want.ti, want.tj, want.fs, want.fr, ht, hr};
     const double *got[7] = {o.f, o.ti, o.tj, o.fs, o.fr, hist, hist + 3};
     for (int q = 0; q < (ROLL == ROLLING_EPSD ? 7 : 6); q++)

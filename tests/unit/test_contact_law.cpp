@@ -287,23 +287,40 @@ TEST(ContactLaw, FastPathIsTheFullLawOrSaysSo)
       {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {0.0, 0.0, 0.0}, false, false},
       {{1e-8, 0.0, 0.0}, {1e-3, 0.0, 0.0}, {1e-9, 0.0, 1e-10}, {0.0, 0.0, 0.0}, false, true},
   };
+  // the contact's state (a sticking contact of two 2.5 mm spheres, 10 um overlap)
+  auto state = [&](const Case &k) {
+    State s;
+    s.n = n;
+    s.vt = k.vt;
+    s.rr = 1.25e-3;
+    s.vroll = s.rr * cross(wi - k.wj, n);
+    s.vn = 0.0;
+    s.delta = 1e-5;
+    s.r = 5e-3 - s.delta;
+    s.a = a;
+    s.meff = 5e-5;
+    s.fne = s.fn = fn;
+    s.sqma = sqma;
+    return s;
+  };
   // the tangential and rolling stages, the history integrated with or without the fast path
-  auto tangential = [&](bool fast, const Case &k, V3 &h, LaneOut &o) {
-    const bool redo = fast ? tangential_history<true>(p, n, k.vt, a, fn, 1e-6, h)
-                           : tangential_history<false>(p, n, k.vt, a, fn, 1e-6, h);
-    tangential_force(p, n, k.vt, a, sqma, fn, 1e-5, 2.5e-3, 2.5e-3, false, h, o);
+  auto tangential = [&](bool fast, const Case &k, V3 &h, Forces &o) {
+    const State s = state(k);
+    const bool redo = fast ? tangential_history<true>(p, s, 1e-6, h) : tangential_history<false>(p, s, 1e-6, h);
+    o = contact_forces(s, tangential_force(p, s, h), 2.5e-3, 2.5e-3, false);
     return redo;
   };
   auto rolling = [&](bool fast, const Case &k, V3 &h, V3 &fr, V3 &tr) {
-    const bool redo = fast ? rolling_history<false, true>(p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, h)
-                           : rolling_history<false, false>(p, n, a, fn, 1.25e-3, wi, k.wj, 1e-6, h);
-    bool on;
-    rolling_force<ROLLING_EPSD>(p, n, a, fn, 1.25e-3, wi, k.wj, h, fr, tr, on);
+    const State s = state(k);
+    const bool redo = fast ? EpsdRolling::history<false, true>(p, s, 1e-6, h)
+                           : EpsdRolling::history<false, false>(p, s, 1e-6, h);
+    fr = EpsdRolling::force(p, s, h);
+    tr = rolling_torque(s, fr);
     return redo;
   };
   for (const Case &k : cases) {
     V3 h1 = k.ht, h2 = k.ht;
-    LaneOut o1, o2;
+    Forces o1, o2;
     const bool redo = tangential(true, k, h1, o1);
     tangential(false, k, h2, o2);
     EXPECT_EQ(redo, k.redo_t);
