@@ -60,9 +60,10 @@ def test_the_shared_part_does_not_depend_on_the_motion():
     from tbagsrun.shear import part_variables
     paper = PRESETS["paper"]
     part = shared_compression(paper, {}, "lammps")
-    assert "v" not in part.variables and "ufinal" not in part.variables
-    assert part_variables(paper, part, {"v": "0.016"}) == part_variables(paper, part, {}) == \
-        run_variables(paper, part, {})
+    assert not {"v", "ufinal"} & set(part_variables(paper, part, {}))
+    assert part_variables(paper, part, {"v": "0.016"}) == part_variables(paper, part, {})
+    assert {k: v for k, v in run_variables(paper, part, {}).items() if k not in ("v", "ufinal")} == \
+        part_variables(paper, part, {})
     assert part_variables(paper, part, {"sand": "calibrated"})["sand"] == "calibrated"
     cyclic = PRESETS["cyclic"]
     assert not {"amps", "vpeak", "cycles"} & set(part_variables(cyclic, shared_compression(cyclic, {}, "lammps"),
