@@ -14,7 +14,8 @@ from . import stages, variables
 from .shear import decide, run_preset, run_realizations
 
 USAGE = """usage: ./tbags shear [PRESET] [--realizations N] [--out DIR] [-np N (default: all cores)]
-                    [--resume | --overwrite] [--progress SECONDS] [--engine lammps|liggghts] [-var name value ...]
+                    [--resume | --overwrite] [--loads F1960,...] [--progress SECONDS]
+                    [--engine lammps|liggghts] [-var name value ...]
 Bag (inputs/in.bag), fill (in.fill), simple shear (in.shear), then figures. -var values override
 the preset's (any in.bag/in.fill/in.shear variable: nx ny nz, Fpaper, Fv, v, ufinal, dt, seed...).
 --out DIR: write there instead of runs/<preset>/ (runs/shear-demo/ for demo).
@@ -25,6 +26,9 @@ amplitude K + 1), its CSV keeping the rows up to the checkpoint; a run with neit
 A call never removes or rewrites an earlier call's files unasked: into a folder that holds runs,
 without --resume, or with --resume and other -var values, it is refused before anything runs.
 --overwrite: empty the output folder first and start again (never a folder ./tbags did not make).
+--loads F1960,F3730: only these of the preset's runs (by folder), their compression still the one
+shared with all its loads: one load of the paper bag per job; a later call with other loads adds
+them to the same folder (its bag, fill and shared compression reused).
 --progress SECONDS: a stage's progress on the console, at least this often and 10 % of the stage
 apart, whichever is later (% done and the time left measured from the stage's rate; default 30,
 0 for none).
@@ -95,6 +99,8 @@ def parse(argv):
             estimate = True
         elif a == "--resume":
             resume = True
+        elif a == "--loads":
+            preset = only_loads(preset, args.pop(0) if args and not args[0].startswith("-") else "")
         elif a == "--overwrite":
             overwrite = True
         elif a == "--progress":
@@ -150,6 +156,20 @@ def parse(argv):
                           "liggghts or --estimate)")
     return Options(preset, ranks, out, nreal, estimate, seed, variables, extra, engine, resume,
                    overwrite, progress_every)
+
+
+def only_loads(preset, text):
+    """--loads F1960,F5500: the preset with those of its runs only (by folder name)."""
+    names = [r.folder for r in preset.runs]
+    chosen = [w for w in text.split(",") if w]
+    if len(names) < 2 or not all(names):
+        raise LaunchError("shear: --loads is for presets of several runs (trends, paper, cyclic ...), "
+                          "not %s" % preset.name)
+    unknown = [w for w in chosen if w not in names]
+    if not chosen or unknown:
+        raise LaunchError("shear: --loads needs some of %s, comma-separated%s"
+                          % (", ".join(names), " (not %s)" % ", ".join(unknown) if unknown else ""))
+    return preset.only(set(chosen))
 
 
 def is_option(word):

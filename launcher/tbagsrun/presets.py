@@ -6,7 +6,7 @@ subfolder, or in the fill's own folder), side by side or one after the other; th
 post-processing and the checks. Every run gets the bag's size; the user's -var values override
 the preset's. shear.py runs them.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 LOADS = (5500, 3730, 1960)    # the paper's three vertical loads (N on its 395 x 395 mm bag)
 # runs of one fill at several loads share their compression up to this fraction of the smallest
@@ -52,6 +52,14 @@ class Preset:
     estimate: bool = False           # measures a short stretch first and projects the time
     fabrics: tuple = ()              # run once per fabric (FABRIC/ subfolders) and compared, unless -var fabric
     help: str = ""
+    # the runs whose compression is shared (shear.shared_compression) when --loads runs some of them
+    compress_runs: tuple = ()
+
+    def only(self, folders):
+        """The preset with only the runs in folders (./tbags shear --loads), their compression
+        still shared with all of its runs."""
+        return replace(self, runs=tuple(r for r in self.runs if r.folder in folders),
+                       compress_runs=self.compress_runs or self.runs)
 
 
 def per_load(deck, **variables):

@@ -71,8 +71,9 @@ def part_variables(preset, part, user):
 def shared_compression(preset, user, engine):
     """The run that makes the compression's shared part (folder "compress", the smallest load,
     -var compress_to: COMPRESS_SHARED or the user's fraction, 0 for none), when the preset's runs
-    differ only in their load (Fpaper) and compress fresh in LAMMPS; else None."""
-    runs = preset.runs
+    (all of them: compress_runs under --loads) differ only in their load (Fpaper) and compress
+    fresh in LAMMPS; else None."""
+    runs = preset.compress_runs or preset.runs
     fraction = float(user.get("compress_to", COMPRESS_SHARED))
     if engine != "lammps" or len(runs) < 2 or len({r.deck for r in runs}) > 1 or fraction <= 0 or \
             {"restart", "compress_from"} & set(user):

@@ -70,6 +70,24 @@ def test_the_shared_part_does_not_depend_on_the_motion():
                                                                  {"amps": "0.25 1", "vpeak": "0.01"}))
 
 
+def test_loads_run_some_loads_from_the_compression_of_all(tmp_path):
+    """--loads: the paper preset with one load plans that load only, from the same shared
+    compression (same folder, deck and stamp: the committed state serves it) as the whole preset."""
+    from tbagsrun.shear import part_variables, plan
+    paper = PRESETS["paper"]
+    one = parse(["paper", "--loads", "F3730"]).preset
+    assert [r.folder for r in one.runs] == ["F3730"] and one.compress_runs == paper.runs
+    two = parse(["paper", "--loads", "F1960,F5500"]).preset
+    assert [r.folder for r in two.runs] == ["F5500", "F1960"]    # the preset's order
+    full, part = shared_compression(paper, {}, "lammps"), shared_compression(one, {}, "lammps")
+    assert part == full and part.variables["Fpaper"] == 1960
+    assert part_variables(one, part, {"seed": 4821}) == part_variables(paper, full, {"seed": 4821})
+    stages = plan(one, tmp_path, {"seed": 4821})
+    assert [s.folder.name for s in stages] == [tmp_path.name, tmp_path.name, "compress", "F3730"]
+    assert stages[3].variables["compress_from"] == "../compress/compress.restart"
+    assert stages[2].variables == plan(paper, tmp_path, {"seed": 4821})[2].variables
+
+
 def test_parse_options_variables_and_seed():
     o = parse(["trends", "-np", "3", "--realizations", "2", "-var", "seed", "7", "-var", "amps", "0.25", "1",
                "-var", "v", "0.01"])
@@ -97,6 +115,9 @@ def test_parse_options_variables_and_seed():
     (["paper", "--estimate", "--resume"], "--resume continues LAMMPS runs"),
     (["trends", "--engine", "liggghts", "--resume"], "--resume continues LAMMPS runs"),
     (["--progress", "-1"], "--progress needs a whole number of seconds"),
+    (["paper", "--loads", "F1961"], r"--loads needs some of F5500, F3730, F1960, comma-separated \(not F1961\)"),
+    (["paper", "--loads"], "--loads needs some of"),
+    (["demo", "--loads", "F1960"], "--loads is for presets of several runs"),
 ])
 def test_bad_arguments_say_what_is_wrong(argv, message):
     with pytest.raises(LaunchError, match=message):
