@@ -15,6 +15,8 @@ plan area (the deck's INERTIAL line), and with the sand's own stress, p = the sh
 sand-sand contacts pass across the bag's mid-height (tbagspost.loadpath, mean over the run's dumps
 while shearing) times F_v over the plan area: I_sand = I / sqrt(share). Where the fabric carries
 most of F_v (the solid cage), the sand shears at a far higher inertial number than the nominal.
+Each run's share is kept in its folder (SHARE_FILE), so a study whose dumps were removed (or not
+committed) is reported again from its CSVs, logs and these files.
 
 usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.rate RATE_DIR
 """
@@ -54,16 +56,28 @@ def inertial_number(folder):
     return float("nan")
 
 
+SHARE_FILE = "sand_share.txt"    # a run's share and the dump steps it came from (the dumps may then go)
+
+
 def sand_share(folder):
     """The sand's share of F_v while shearing: the compressive force the sand-sand contacts pass
     across the bag's mid-height over the plate's F_v, the mean over the dumps at u > 0; nan
-    without contact dumps."""
+    without contact dumps. Kept in the run's SHARE_FILE with the dumps' steps, and read from it
+    when the dumps are the same or gone."""
     run = Run(folder)
-    if not run.steps("contacts"):
+    steps = run.steps("contacts")
+    kept = Path(folder) / SHARE_FILE
+    if kept.is_file():
+        share, *said = kept.read_text().split()
+        if not steps or [int(x) for x in said] == steps:
+            return float(share)
+    if not steps:
         return float("nan")
     shares = [r["sand-sand"][0] / run.at_step(step, "Fv_N") for step, r in loadpath.by_step(run).items()
               if run.at_step(step) > 0]
-    return float(np.mean(shares)) if shares else float("nan")
+    share = float(np.mean(shares)) if shares else float("nan")
+    kept.write_text("%.17g %s\n" % (share, " ".join(map(str, steps))))
+    return share
 
 
 def rms(x):

@@ -68,3 +68,24 @@ def test_inertial_number_from_the_sands_stress(tmp_path, monkeypatch):
     assert abs(rows[1]["share"] - 0.04) < 1e-12
     assert abs(rows[2]["inertial_sand"] - 5 * rows[2]["inertial"]) < 1e-12
     assert "| 0.04 | 1.20e-03 |" in rate.report(root)[0]
+
+
+def test_the_share_is_kept_when_the_dumps_go(tmp_path, monkeypatch):
+    """The share is kept beside the run with its dumps' steps: read again while the dumps are the
+    same or gone (a committed study has no dumps), measured again when they changed."""
+    root = make(tmp_path / "f", {1: 0.0, 2: 1.0})
+    run = root / "r1" / "I1"
+    (run / "dump.contacts.100").write_text("")
+    share = {"value": 0.04}
+    monkeypatch.setattr(rate.Run, "at_step", lambda self, step, column="u_mm": 212.0 if column == "Fv_N" else 1.0)
+    monkeypatch.setattr(rate.loadpath, "by_step",
+                        lambda r: {100: {"sand-sand": (share["value"] * 212.0, 0.0, 10)}})
+    assert abs(rate.sand_share(run) - 0.04) < 1e-12
+    assert (run / rate.SHARE_FILE).read_text().split()[1:] == ["100"]
+    share["value"] = 0.5                       # kept: the same dumps are not read again
+    assert abs(rate.sand_share(run) - 0.04) < 1e-12
+    (run / "dump.contacts.100").unlink()       # gone: the kept share
+    assert abs(rate.sand_share(run) - 0.04) < 1e-12
+    (run / "dump.contacts.200").write_text("")  # other dumps: measured again
+    assert abs(rate.sand_share(run) - 0.5) < 1e-12
+    assert np.isnan(rate.sand_share(root / "r1" / "I2"))    # neither dumps nor a kept share
