@@ -104,9 +104,12 @@ struct ImplicitDamping {
   template <int W>
   static TBAGS_INLINE void predict(Lanes<W> &b, int l, const State &s, const Touch &t)
   {
+    Touch q = t;    // i's predicted velocities
+    q.vr = row3(b.vrd, l);
+    q.wi = row3(b.wid, l);
     double vn;
     vec::V3 vt;
-    contact_velocity(s.n, t.radi, t.radj, row3(b.vrd, l), row3(b.wid, l), t.wj, vn, vt);
+    contact_velocity(s.n, q, vn, vt);
     b.vnd[l] = vn;
     set_row3(b.vtd, l, vt);
   }

@@ -203,15 +203,15 @@ struct State {
   double sqma = 0.0;    // sqrt(m* a), normal_force()
 };
 
-// The relative velocity at the contact point of unit normal n (from j to i): its normal part
-// vn and tangential part vt.
-TBAGS_INLINE void contact_velocity(const vec::V3 &n, double radi, double radj, const vec::V3 &vr,
-                                   const vec::V3 &wi, const vec::V3 &wj, double &vn, vec::V3 &vt)
+// The relative velocity of the contact points of t at the unit normal n (from j to i): its
+// normal part vn and tangential part vt (written in place: a returned pair, copied into the
+// State as a whole, kept the geometry loop from vectorising).
+TBAGS_INLINE void contact_velocity(const vec::V3 &n, const Touch &t, double &vn, vec::V3 &vt)
 {
   using namespace vec;
-  vn = dot(vr, n);
-  const V3 wr = radi * wi + radj * wj;
-  vt = (vr - vn * n) - cross(wr, n);
+  vn = dot(t.vr, n);
+  const V3 wr = t.radi * t.wi + t.radj * t.wj;
+  vt = (t.vr - vn * n) - cross(wr, n);
 }
 
 // Stage 1, geometry and Hertz force: the state of a touching contact (wall: t is a plate's).
@@ -224,7 +224,7 @@ TBAGS_INLINE State geometry(const Params &p, const Touch &t, bool wall)
   const double rinv = 1.0 / s.r;
   s.delta = (t.radi + t.radj) - s.r;
   s.n = rinv * t.dx;
-  contact_velocity(s.n, t.radi, t.radj, t.vr, t.wi, t.wj, s.vn, s.vt);
+  contact_velocity(s.n, t, s.vn, s.vt);
   s.a = std::sqrt(t.reff * s.delta);
   s.fne = p.kn * s.a * s.delta;
   s.meff = t.meff;
