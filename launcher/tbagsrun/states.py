@@ -19,7 +19,8 @@ from . import ROOT, LaunchError
 STATES = ROOT / "states"
 CHUNK = 1 << 20
 # the files a stage reads (its deck and what it includes); a state made from other contents of
-# them is not restored: the stage runs instead. Other decks: their own and every include.
+# them is not restored: the stage runs instead. Other decks: their own and every include. Kept by
+# hand; tests/python/test_states.py checks it against the decks' unconditional includes.
 READS = {"bag": ("inputs/in.bag",),
          "fill": ("inputs/in.bag", "inputs/in.fill", "inputs/sand.lmp", "inputs/fabric.lmp",
                   "inputs/yarn.lmp", "inputs/yarn_pp_tape.table"),
