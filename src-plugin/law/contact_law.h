@@ -69,6 +69,9 @@ struct Params {
   // SIMD loops gather it per contact (a byte gather kept the geometry loop from vectorising: +26 %
   // instructions per contact-step)
   double roll_mean = 0.0;
+  // twisting (TwistingSds, where ktw > 0): stiffness (N m/rad), damping (N m s/rad), the cap's
+  // lever (m: |M_t| <= mutw |F_n|)
+  double ktw = 0.0, ctw = 0.0, mutw = 0.0;
 };
 
 inline Params make_params(double Estar, double Gstar, double e, double mu, double mur, int rolling,
@@ -192,6 +195,7 @@ struct State {
   vec::V3 n;        // unit normal, from j to i
   vec::V3 vt;       // tangential relative velocity of the contact points
   vec::V3 vroll;    // rolling velocity R_r (w_i - w_j) x n
+  double wt = 0.0;    // twisting (relative spin) rate (w_i - w_j) . n
   double vn;        // normal relative velocity n . (v_i - v_j)
   double r;         // centre distance
   double delta;     // overlap
@@ -230,6 +234,7 @@ TBAGS_INLINE State geometry(const Params &p, const Touch &t, bool wall)
   s.meff = t.meff;
   s.rr = rolling_radius(p, t.reff, t.radi, t.radj, wall);
   s.vroll = s.rr * cross(t.wi - t.wj, s.n);
+  s.wt = dot(t.wi - t.wj, s.n);
   return s;
 }
 
@@ -381,6 +386,30 @@ struct CdtRolling {
     return select(on, fr, V3{0.0, 0.0, 0.0});
   }
 };
+
+// Stage 7, the twisting resistance (LAMMPS's "twisting sds"; YADE's Mindlin law has the same
+// spring without the cap): a torsional spring and dashpot on the relative spin about the normal,
+// s.wt, with the twist angle theta as history, integrated first (history(), when integrated),
+// then the moment M_t = -k_tw theta - c_tw s.wt, capped at mu_tw |F_n| (theta then reset so that
+// spring and dashpot give the cap, as LAMMPS does); twisting_torque(): i gets M_t n, j -M_t n.
+// Acts where p.ktw > 0 (the host refuses a cap without a spring).
+struct TwistingSds {
+  static constexpr int HISTORY = 1;
+  static TBAGS_INLINE void history(const Params &p, const State &s, double dt, double &theta)
+  {
+    theta = p.ktw > 0.0 ? theta + s.wt * dt : theta;
+  }
+  static TBAGS_INLINE double moment(const Params &p, const State &s, double &theta)
+  {
+    const double m = -p.ktw * theta - p.ctw * s.wt;
+    const double sign = (s.wt > 0.0) - (s.wt < 0.0);
+    const double crit = p.mutw * std::fabs(s.fn);
+    const bool cap = (p.ktw > 0.0) & (std::fabs(m) > crit);
+    theta = cap ? (crit * sign - p.ctw * s.wt) / p.ktw : theta;
+    return p.ktw > 0.0 ? (cap ? -crit * sign : m) : 0.0;
+  }
+};
+TBAGS_INLINE vec::V3 twisting_torque(const State &s, double m) { return m * s.n; }
 
 template <int ROLL> struct RollingModel { using type = NoRolling; };
 template <> struct RollingModel<ROLLING_EPSD> { using type = EpsdRolling; };

@@ -672,3 +672,55 @@ TEST(Wall, ImplicitDampingStableAtTwiceTheStep)
   EXPECT_NEAR(i1, e1, 0.02 * e1);
   EXPECT_LT(std::fabs(i2 - e2), 0.6 * std::fabs(i1 - e1));
 }
+
+// Twisting (TwistingSds, LAMMPS's "twisting sds"): the geometry's twist rate is the relative spin
+// about the normal; the moment is the spring on the integrated angle plus the dashpot, and at the
+// cap mu_tw |F_n| it stays there with the angle reset so that the next elastic step starts from
+// the cap; no twisting without a spring.
+TEST(Twisting, SdsSpringDashpotAndCap)
+{
+  Params p = sand();
+  p.ktw = 2e-4;     // N m/rad
+  p.ctw = 1e-8;     // N m s/rad
+  p.mutw = 1e-4;    // m: cap 1e-4 |F_n|
+  Touch t;
+  t.dx = tbags::vec::V3{0.0, 0.0, 5e-3 - 1e-5};    // n = +z
+  t.vr = tbags::vec::V3{0.0, 0.0, 0.0};
+  t.wi = tbags::vec::V3{0.3, 0.0, 4.0};
+  t.wj = tbags::vec::V3{0.0, -0.2, 1.0};
+  t.radi = t.radj = 2.5e-3;
+  t.meff = 5e-5;
+  t.reff = 1.25e-3;
+  State s = geometry(p, t, false);
+  expect_rel(s.wt, 3.0, 1e-15);    // (w_i - w_j) . n: only the spin about z
+  normal_force(p, false, s);
+  const double dt = 1e-6, fn = std::fabs(s.fn);
+  double theta = 0.0;
+  for (int k = 1; k <= 5; k++) {    // elastic: M = -k theta - c w_t, theta = k dt w_t
+    TwistingSds::history(p, s, dt, theta);
+    const double m = TwistingSds::moment(p, s, theta);
+    expect_rel(theta, k * dt * 3.0, 1e-12);
+    expect_rel(m, -p.ktw * k * dt * 3.0 - p.ctw * 3.0, 1e-12);
+  }
+  // past the cap: the moment is the cap against the spin, the angle such that spring and
+  // dashpot give it
+  theta = 10.0;
+  double m = TwistingSds::moment(p, s, theta);
+  const double crit = p.mutw * fn;
+  expect_rel(m, -crit, 1e-12);
+  expect_rel(-p.ktw * theta - p.ctw * s.wt, -crit, 1e-12);
+  // the torque on i along the normal (j gets its opposite)
+  const tbags::vec::V3 ti = twisting_torque(s, m);
+  EXPECT_EQ(ti.x, 0.0);
+  expect_rel(ti.z, -crit, 1e-12);
+  // opposite spin, opposite cap
+  s.wt = -3.0;
+  theta = -10.0;
+  expect_rel(TwistingSds::moment(p, s, theta), crit, 1e-12);
+  // no spring: no twisting, the angle kept
+  p.ktw = 0.0;
+  theta = 0.5;
+  TwistingSds::history(p, s, dt, theta);
+  EXPECT_EQ(TwistingSds::moment(p, s, theta), 0.0);
+  EXPECT_EQ(theta, 0.5);
+}
