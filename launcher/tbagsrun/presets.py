@@ -91,7 +91,7 @@ PRESETS = {p.name: p for p in (
            help="the rate study of the paper run: the trends bag at 1.96 kN (the highest inertial number) "
                 "sheared to 5 mm at 1, 2, 4 and 8 times the paper's inertial number (1.33, 2.67, 5.33, "
                 "10.7 mm/s; the paper's 4 mm/s on its 75 mm of sand is 1.33 mm/s on 25 mm), side by side; "
-                "with --realizations 3 (about 1.5 h on 2 cores) tbagspost/rate.py compares each speed "
+                "with --realizations 3 (about 3 h on 2 cores: 54 min a fill, bound by the slowest speed's 2.5 million steps) tbagspost/rate.py compares each speed "
                 "with the slowest against the realizations' spread and names the fastest within it "
                 "(rate.md). -> runs/rate/"),
     Preset("cyclic", "cyclic", DEMO_BAG, per_load("cyclic"), True, "cyclic", realizations=False,
