@@ -40,7 +40,7 @@ def test_estimate_makes_the_shared_part_that_the_run_reuses(tmp_path, monkeypatc
     text = (tmp_path / "estimate" / "projection.txt").read_text()
     print(part, text.splitlines()[1], sep="\n")
     assert "of which %d shared by the loads" % round(n_part * 15 / 3) in text
-    part_stage = (tmp_path / "compress", "shear", 2, shear.run_variables(
+    part_stage = (tmp_path / "compress", "shear", 2, shear.part_variables(
         PRESETS["paper"], shear.shared_compression(PRESETS["paper"], {}, "lammps"), dict(lmprun.TINY_BAG)),
         said.append, "compress.restart")
     said.clear()
