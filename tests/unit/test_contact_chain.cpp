@@ -47,22 +47,6 @@ Out reference_contact(const Params &p, bool clip, const Touch &t, bool wall, dou
   return o;
 }
 
-// A contact's Touch from its parts.
-Touch touch(const V3 &dx, const V3 &vr, const V3 &wi, const V3 &wj, double radi, double radj,
-            double meff, double reff)
-{
-  Touch t;
-  t.dx = dx;
-  t.vr = vr;
-  t.wi = wi;
-  t.wj = wj;
-  t.radi = radi;
-  t.radj = radj;
-  t.meff = meff;
-  t.reff = reff;
-  return t;
-}
-
 // Two materials (sand and a yarn-like polymer), rolling on in the first and both ways for the
 // second when mur2 is 0; limit_damping as given.
 struct Materials {
@@ -141,7 +125,7 @@ bool check_batch(const Materials &m, int n, double tilt, bool clip, unsigned see
     const V3 dx = row3(a.dx, l);
     V3 ht = row3(a.h, l), hr = row3(a.h + 3, l);
     const Out o = reference_contact<ROLL, UPDATE>(
-        p, clip, touch(dx, row3(a.vr, l), row3(a.wi, l), row3(a.wj, l), a.radi[l], a.radj[l], meff, reff),
+        p, clip, Touch{dx, row3(a.vr, l), row3(a.wi, l), row3(a.wj, l), a.radi[l], a.radj[l], meff, reff},
         false, dt, ht, hr);
     const double fl = SPECIAL ? a.factor[l] : 1.0;
     const V3 want[5] = {fl * o.f, fl * o.ti, fl * o.tj, ht, hr};
@@ -241,7 +225,7 @@ template <int ROLL> void check_one_contact(bool update)
     compute(m.p[k % 2], c, hist, update, o);
     V3 ht = row3(b->h, 0), hr = row3(b->h + 3, 0);
     using tbags::vec::load3;
-    const Touch t = touch(load3(dx), load3(vi), load3(wi), load3(wj), c.radi, radj, meff, reff);
+    const Touch t{load3(dx), load3(vi), load3(wi), load3(wj), c.radi, radj, meff, reff};
     const Out want = update ? reference_contact<ROLL, true>(m.p[k % 2], false, t, wall, 1e-6, ht, hr)
                             : reference_contact<ROLL, false>(m.p[k % 2], false, t, wall, 1e-6, ht, hr);
     const V3 w[7] = {want.f, want.ti, want.tj, want.fs, want.fr, ht, hr};
