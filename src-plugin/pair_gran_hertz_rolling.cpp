@@ -35,10 +35,11 @@ namespace law = tbags::contact;
 static constexpr double CAND_MOVE_LIMIT = 0.49;
 
 PairGranHertzRolling::PairGranHertzRolling(LAMMPS *lmp) :
-    Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), roll_mean(false), size_history(3),
-    history_model(-1), ntypes1(0),
+    Pair(lmp), rolling(law::ROLLING_NONE), limit_damping(false), roll_mean(false), twisting(false),
+    size_history(3), history_model(-1), ntypes1(0),
     freeze_group_bit(0), neighprev(0), Emod(nullptr), poiss(nullptr), matflag(nullptr),
-    maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), fix_history(nullptr),
+    maxrad(nullptr), mu(nullptr), mur(nullptr), cor(nullptr), ktw(nullptr), ctw(nullptr),
+    mutw(nullptr), fix_history(nullptr),
     packx(nullptr), packv(nullptr), npack(0), ncand(0), x0(nullptr), nx0(0), cand_nall(0),
     cand_lastcall(-1), cskin(0.0), cand_lim2(0.0)
 {
@@ -81,6 +82,9 @@ PairGranHertzRolling::~PairGranHertzRolling()
     memory->destroy(mu);
     memory->destroy(mur);
     memory->destroy(cor);
+    memory->destroy(ktw);
+    memory->destroy(ctw);
+    memory->destroy(mutw);
   }
 }
 
@@ -100,6 +104,9 @@ void PairGranHertzRolling::allocate()
   memory->create(mu, n + 1, n + 1, "pair:mu");
   memory->create(mur, n + 1, n + 1, "pair:mur");
   memory->create(cor, n + 1, n + 1, "pair:cor");
+  memory->create(ktw, n + 1, n + 1, "pair:ktw");
+  memory->create(ctw, n + 1, n + 1, "pair:ctw");
+  memory->create(mutw, n + 1, n + 1, "pair:mutw");
   for (int i = 0; i <= n; i++) {
     Emod[i] = poiss[i] = maxrad[i] = 0.0;
     matflag[i] = 0;
@@ -108,6 +115,7 @@ void PairGranHertzRolling::allocate()
       // reports a type without coefficients (matflag tracks what pair_coeff gave)
       setflag[i][j] = (i == j) ? 1 : 0;
       mu[i][j] = mur[i][j] = cor[i][j] = -1.0;
+      ktw[i][j] = ctw[i][j] = mutw[i][j] = -1.0;
     }
   }
   law.assign((size_t) (n + 1) * (n + 1), law::Params());
@@ -115,7 +123,7 @@ void PairGranHertzRolling::allocate()
 
 /* ----------------------------------------------------------------------
    pair_style gran/hertz/rolling epsd|cdt|none [limit_damping] [rolling_radius effective|mean]
-     [kernel auto|avx2|baseline] [contact_skin f]
+     [twisting none|sds] [kernel auto|avx2|baseline] [contact_skin f]
 ------------------------------------------------------------------------- */
 
 void PairGranHertzRolling::settings(int narg, char **arg)
@@ -130,6 +138,7 @@ void PairGranHertzRolling::settings(int narg, char **arg)
     error->all(FLERR, "{}: unknown rolling model '{}'; use epsd, cdt or none", STYLE, arg[0]);
   limit_damping = false;
   roll_mean = false;
+  twisting = false;
   kernel_choice = KERNEL_AUTO;
   contact_skin = 0.25;
   for (int iarg = 1; iarg < narg; iarg++) {
@@ -142,6 +151,13 @@ void PairGranHertzRolling::settings(int narg, char **arg)
       else
         error->all(FLERR, "{}: rolling_radius must be effective (R* = RiRj/(Ri+Rj)) or mean "
                    "((Ri+Rj)/2), not '{}'", STYLE, r);
+    } else if (strcmp(arg[iarg], "twisting") == 0) {
+      const std::string t = iarg + 1 < narg ? arg[++iarg] : "";
+      if (t == "none") twisting = false;
+      else if (t == "sds") twisting = true;
+      else
+        error->all(FLERR, "{}: twisting must be none or sds (a torsional spring, dashpot and cap "
+                   "set by 'pair_coeff I J ... twisting k_tw c_tw mu_tw'), not '{}'", STYLE, t);
     } else if (strcmp(arg[iarg], "kernel") == 0) {
       if (iarg + 1 >= narg) error->all(FLERR, "{}: kernel needs auto, avx2 or baseline", STYLE);
       const std::string k = arg[++iarg];
@@ -157,17 +173,19 @@ void PairGranHertzRolling::settings(int narg, char **arg)
         error->all(FLERR, "{}: contact_skin must be a fraction >= 0 of the neighbor skin (got {})",
                    STYLE, contact_skin);
     } else {
-      error->all(FLERR, "{}: unknown keyword '{}'; use limit_damping, rolling_radius, kernel or "
-                 "contact_skin", STYLE, arg[iarg]);
+      error->all(FLERR, "{}: unknown keyword '{}'; use limit_damping, rolling_radius, twisting, "
+                 "kernel or contact_skin", STYLE, arg[iarg]);
     }
   }
-  size_history = law::history_size(rolling);
+  size_history = law::history_size(rolling, twisting);
 }
 
 /* ----------------------------------------------------------------------
    pair_coeff I J [material E nu] [friction mu] [rolling mu_r] [restitution e]
+     [twisting k_tw c_tw mu_tw]
    material only with I == J; for I == J friction and restitution (and rolling unless the
-   model is none) are required; for I != J, values not given mix from the diagonal.
+   model is none, twisting with twisting sds) are required; for I != J, values not given mix
+   from the diagonal (geometric mean).
 ------------------------------------------------------------------------- */
 
 void PairGranHertzRolling::coeff(int narg, char **arg)
@@ -181,7 +199,7 @@ void PairGranHertzRolling::coeff(int narg, char **arg)
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
-  double E = -1.0, nu = 0.0, f = -1.0, fr = -1.0, e = -1.0;
+  double E = -1.0, nu = 0.0, f = -1.0, fr = -1.0, e = -1.0, tk = -1.0, tc = -1.0, tm = -1.0;
   bool has_mat = false;
   for (int iarg = 2; iarg < narg;) {
     const std::string kw = arg[iarg];
@@ -216,9 +234,22 @@ void PairGranHertzRolling::coeff(int narg, char **arg)
       if (e <= 0.0 || e > 1.0)
         error->all(FLERR, "{}: coefficient of restitution must be in (0, 1] (got {})", STYLE, e);
       iarg += 2;
+    } else if (kw == "twisting") {
+      need(3);
+      if (!twisting)
+        error->all(FLERR, "{}: pair_coeff keyword 'twisting' needs 'twisting sds' in the "
+                   "pair_style command", STYLE);
+      tk = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      tc = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      tm = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+      if (tk <= 0.0 || tc < 0.0 || tm < 0.0)
+        error->all(FLERR, "{}: twisting needs a stiffness k_tw > 0 (N m/rad), a damping c_tw >= 0 "
+                   "(N m s/rad) and a cap coefficient mu_tw >= 0 (m; |M_t| <= mu_tw |F_n|), got "
+                   "{} {} {}", STYLE, tk, tc, tm);
+      iarg += 4;
     } else {
       error->all(FLERR, "{}: unknown pair_coeff keyword '{}'; use material, friction, rolling, "
-                 "restitution", STYLE, kw);
+                 "restitution{}", STYLE, kw, twisting ? ", twisting" : "");
     }
   }
 
@@ -234,6 +265,9 @@ void PairGranHertzRolling::coeff(int narg, char **arg)
         if (f < 0.0 || e < 0.0 || (rolling != law::ROLLING_NONE && fr < 0.0))
           error->all(FLERR, "{}: pair_coeff {} {} needs friction, restitution{}", STYLE, i, i,
                      rolling != law::ROLLING_NONE ? " and rolling" : "");
+        if (twisting && tk < 0.0)
+          error->all(FLERR, "{}: pair_coeff {} {} needs 'twisting k_tw c_tw mu_tw' (pair_style "
+                     "... twisting sds)", STYLE, i, i);
         if (has_mat) {
           Emod[i] = E;
           poiss[i] = nu;
@@ -243,6 +277,11 @@ void PairGranHertzRolling::coeff(int narg, char **arg)
       if (f >= 0.0) mu[i][j] = f;
       if (fr >= 0.0) mur[i][j] = fr;
       if (e >= 0.0) cor[i][j] = e;
+      if (tk >= 0.0) {
+        ktw[i][j] = tk;
+        ctw[i][j] = tc;
+        mutw[i][j] = tm;
+      }
       if (rolling == law::ROLLING_NONE && fr < 0.0) mur[i][j] = 0.0;
       if (i != j) mixed_flag = 0;    // write_data: off-diagonal values need 'pair ij'
       setflag[i][j] = 1;
@@ -280,10 +319,10 @@ void PairGranHertzRolling::init_style()
     if (!fix_history) error->all(FLERR, "{}: could not find its neighbor history fix", STYLE);
     // pair_style re-issued with another rolling model (LAMMPS then only calls settings()): the
     // store holds the old model's records, of another size and meaning; start a new one, in place
-    if (history_model != rolling || fix_history->get_dnum() != size_history) {
+    if (history_model != history_key() || fix_history->get_dnum() != size_history) {
       if (comm->me == 0)
-        error->warning(FLERR, "{}: the rolling model changed since the last run: the contact "
-                       "histories start again from zero", STYLE);
+        error->warning(FLERR, "{}: the rolling or twisting model changed since the last run: the "
+                       "contact histories start again from zero", STYLE);
       // (replace_fix needs the new ID free: the old store is renamed first)
       delete[] fix_history->id;
       fix_history->id = utils::strdup("NEIGH_HISTORY_GHR_OLD");
@@ -292,7 +331,7 @@ void PairGranHertzRolling::init_style()
       fix_history->pair = this;
     }
   }
-  history_model = rolling;
+  history_model = history_key();
 
   auto fixlist = modify->get_fix_by_style("^freeze");
   if (fixlist.size() > 1) error->all(FLERR, "{}: only one fix freeze is allowed", STYLE);
@@ -336,12 +375,12 @@ void PairGranHertzRolling::choose_kernel()
                why);
   simd_avx2 = (have && kernel_choice != KERNEL_BASELINE) ? 1 : 0;
   if (simd_avx2 != simd_logged && comm->me == 0)
-    utils::logmesg(lmp, "{}: batch kernel {} (kernel {}{}{}); rolling radius {}\n", STYLE,
+    utils::logmesg(lmp, "{}: batch kernel {} (kernel {}{}{}); rolling radius {}; twisting {}\n", STYLE,
                    simd_avx2 ? "avx2, 4 contacts per vector" : "baseline x86-64, 2 contacts per vector",
                    kernel_choice == KERNEL_AUTO ? "auto" : kernel_choice == KERNEL_AVX2 ? "avx2" : "baseline",
                    (!have && kernel_choice == KERNEL_AUTO) ? ": " : "",
                    (!have && kernel_choice == KERNEL_AUTO) ? why : "",
-                   roll_mean ? "mean (Ri+Rj)/2" : "effective R*");
+                   roll_mean ? "mean (Ri+Rj)/2" : "effective R*", twisting ? "sds" : "none");
   simd_logged = simd_avx2;
 }
 
@@ -364,6 +403,11 @@ double PairGranHertzRolling::init_one(int i, int j)
   law::Params p = law::make_params(Es, Gs, pick(cor, "restitution"), pick(mu, "friction"),
                                    pick(mur, "rolling friction"), rolling, limit_damping);
   p.roll_mean = roll_mean ? 1.0 : 0.0;
+  if (twisting) {
+    p.ktw = pick(ktw, "twisting stiffness");
+    p.ctw = pick(ctw, "twisting damping");
+    p.mutw = pick(mutw, "twisting cap");
+  }
   law[i * ntypes1 + j] = law[j * ntypes1 + i] = p;
 
   double cut = maxrad[i] + maxrad[j];
@@ -392,7 +436,7 @@ double PairGranHertzRolling::single(int i, int j, int itype, int jtype, double r
     error->one(FLERR, "{}: single() needs the contact history; run at least 0 steps first", STYLE);
 
   // find j in i's neighbor list to read the stored history (copied: single() changes nothing)
-  double hist[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  double hist[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   const int jnum = list->numneigh[i];
   const int *jlist = list->firstneigh[i];
   bool found = false;
@@ -444,7 +488,8 @@ double PairGranHertzRolling::single(int i, int j, int itype, int jtype, double r
 /* ----------------------------------------------------------------------
    history as seen from j (newton off, FixNeighHistory): the tangential displacement
    integrates v_t, which changes sign with i <-> j; the rolling displacement integrates
-   R* (w_i - w_j) x n, where both factors change sign, so it is kept.
+   R* (w_i - w_j) x n and the twist angle (w_i - w_j) . n, where both factors change sign, so
+   they are kept.
 ------------------------------------------------------------------------- */
 
 void PairGranHertzRolling::transfer_history(double *source, double *target, int, int)
@@ -474,8 +519,9 @@ double PairGranHertzRolling::memory_usage()
 {
   double bytes = Pair::memory_usage();
   const double nt = atom->ntypes + 1.0;
-  // setflag, cutsq, mu, mur, cor per type pair; Emod, poiss, maxrad, matflag per type; the law
-  if (allocated) bytes += nt * nt * (4 * sizeof(double) + sizeof(int)) + nt * (3 * sizeof(double) + sizeof(int));
+  // setflag, cutsq, mu, mur, cor, ktw, ctw, mutw per type pair; Emod, poiss, maxrad, matflag per
+  // type; the law
+  if (allocated) bytes += nt * nt * (7 * sizeof(double) + sizeof(int)) + nt * (3 * sizeof(double) + sizeof(int));
   bytes += (double) law.capacity() * sizeof(law::Params);
   bytes += (double) npack * (sizeof(AtomX) + sizeof(AtomV)) + (double) nx0 * sizeof(AtomX);
   bytes += (double) cand.capacity() * sizeof(Cand);
@@ -494,46 +540,52 @@ void *PairGranHertzRolling::extract(const char *str, int &dim)
   if (strcmp(str, "mu") == 0) return (void *) mu;
   if (strcmp(str, "mu_r") == 0) return (void *) mur;
   if (strcmp(str, "restitution") == 0) return (void *) cor;
+  if (strcmp(str, "k_twist") == 0) return (void *) ktw;
   return nullptr;
 }
 
 /* ---------------------------------------------------------------------- */
 
-// restart settings: the rolling model plus SETTINGS_V3 marks the record that also holds the kernel
-// choice, the contact skin and the rolling radius; SETTINGS_V2 the kernel and skin only (before
-// rolling_radius); files of tbags 0.3 and before hold the model and limit_damping only
+// restart settings: the rolling model plus SETTINGS_V4 marks the record that also holds the kernel
+// choice, the contact skin, the rolling radius and twisting; SETTINGS_V3 all but twisting,
+// SETTINGS_V2 the kernel and skin only (before rolling_radius); files of tbags 0.3 and before
+// hold the model and limit_damping only. With twisting, each type pair's record ends with its
+// twisting coefficients.
 static constexpr int SETTINGS_V2 = 16;
 static constexpr int SETTINGS_V3 = 32;
+static constexpr int SETTINGS_V4 = 64;
 
 void PairGranHertzRolling::write_restart_settings(FILE *fp)
 {
-  int head[3] = {rolling + SETTINGS_V3, limit_damping ? 1 : 0, kernel_choice};
+  int head[3] = {rolling + SETTINGS_V4, limit_damping ? 1 : 0, kernel_choice};
   fwrite(head, sizeof(int), 3, fp);
   fwrite(&contact_skin, sizeof(double), 1, fp);
-  const int mean = roll_mean ? 1 : 0;
-  fwrite(&mean, sizeof(int), 1, fp);
+  const int flags[2] = {roll_mean ? 1 : 0, twisting ? 1 : 0};
+  fwrite(flags, sizeof(int), 2, fp);
 }
 
 void PairGranHertzRolling::read_restart_settings(FILE *fp)
 {
-  int head[4] = {0, 0, KERNEL_AUTO, 0};
+  int head[5] = {0, 0, KERNEL_AUTO, 0, 0};
   if (comm->me == 0) {
     utils::sfread(FLERR, head, sizeof(int), 2, fp, nullptr, error);
-    const int version = head[0] >= SETTINGS_V3 ? 3 : head[0] >= SETTINGS_V2 ? 2 : 1;
+    const int version = head[0] >= SETTINGS_V4 ? 4 : head[0] >= SETTINGS_V3 ? 3 : head[0] >= SETTINGS_V2 ? 2 : 1;
     if (version >= 2) {
       utils::sfread(FLERR, &head[2], sizeof(int), 1, fp, nullptr, error);
       utils::sfread(FLERR, &contact_skin, sizeof(double), 1, fp, nullptr, error);
     }
     if (version >= 3) utils::sfread(FLERR, &head[3], sizeof(int), 1, fp, nullptr, error);
-    head[0] -= version == 3 ? SETTINGS_V3 : version == 2 ? SETTINGS_V2 : 0;
+    if (version >= 4) utils::sfread(FLERR, &head[4], sizeof(int), 1, fp, nullptr, error);
+    head[0] -= version == 4 ? SETTINGS_V4 : version == 3 ? SETTINGS_V3 : version == 2 ? SETTINGS_V2 : 0;
   }
-  MPI_Bcast(head, 4, MPI_INT, 0, world);
+  MPI_Bcast(head, 5, MPI_INT, 0, world);
   MPI_Bcast(&contact_skin, 1, MPI_DOUBLE, 0, world);
   rolling = head[0];
   limit_damping = head[1] != 0;
   kernel_choice = head[2];
   roll_mean = head[3] != 0;
-  size_history = law::history_size(rolling);
+  twisting = head[4] != 0;
+  size_history = law::history_size(rolling, twisting);
 }
 
 void PairGranHertzRolling::write_restart(FILE *fp)
@@ -548,6 +600,11 @@ void PairGranHertzRolling::write_restart(FILE *fp)
       fwrite(&mu[i][j], sizeof(double), 1, fp);
       fwrite(&mur[i][j], sizeof(double), 1, fp);
       fwrite(&cor[i][j], sizeof(double), 1, fp);
+      if (twisting) {
+        fwrite(&ktw[i][j], sizeof(double), 1, fp);
+        fwrite(&ctw[i][j], sizeof(double), 1, fp);
+        fwrite(&mutw[i][j], sizeof(double), 1, fp);
+      }
     }
   }
 }
@@ -572,11 +629,19 @@ void PairGranHertzRolling::read_restart(FILE *fp)
         utils::sfread(FLERR, &mu[i][j], sizeof(double), 1, fp, nullptr, error);
         utils::sfread(FLERR, &mur[i][j], sizeof(double), 1, fp, nullptr, error);
         utils::sfread(FLERR, &cor[i][j], sizeof(double), 1, fp, nullptr, error);
+        if (twisting) {
+          utils::sfread(FLERR, &ktw[i][j], sizeof(double), 1, fp, nullptr, error);
+          utils::sfread(FLERR, &ctw[i][j], sizeof(double), 1, fp, nullptr, error);
+          utils::sfread(FLERR, &mutw[i][j], sizeof(double), 1, fp, nullptr, error);
+        }
       }
       MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
       MPI_Bcast(&mu[i][j], 1, MPI_DOUBLE, 0, world);
       MPI_Bcast(&mur[i][j], 1, MPI_DOUBLE, 0, world);
       MPI_Bcast(&cor[i][j], 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&ktw[i][j], 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&ctw[i][j], 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&mutw[i][j], 1, MPI_DOUBLE, 0, world);
     }
   }
 }
@@ -587,9 +652,12 @@ void PairGranHertzRolling::read_restart(FILE *fp)
 
 void PairGranHertzRolling::write_data(FILE *fp)
 {
-  for (int i = 1; i <= atom->ntypes; i++)
-    utils::print(fp, "{} material {:.17g} {:.17g} friction {:.17g} rolling {:.17g} restitution {:.17g}\n",
+  for (int i = 1; i <= atom->ntypes; i++) {
+    utils::print(fp, "{} material {:.17g} {:.17g} friction {:.17g} rolling {:.17g} restitution {:.17g}",
                  i, Emod[i], poiss[i], mu[i][i], mur[i][i], cor[i][i]);
+    if (twisting) utils::print(fp, " twisting {:.17g} {:.17g} {:.17g}", ktw[i][i], ctw[i][i], mutw[i][i]);
+    utils::print(fp, "\n");
+  }
 }
 
 void PairGranHertzRolling::write_data_all(FILE *fp)
@@ -601,8 +669,10 @@ void PairGranHertzRolling::write_data_all(FILE *fp)
         utils::print(fp, "{} {} material {:.17g} {:.17g}", i, j, Emod[i], poiss[i]);
       else
         utils::print(fp, "{} {}", i, j);
-      utils::print(fp, " friction {:.17g} rolling {:.17g} restitution {:.17g}\n",
+      utils::print(fp, " friction {:.17g} rolling {:.17g} restitution {:.17g}",
                    mu[i][j] >= 0.0 ? mu[i][j] : p.mu, mur[i][j] >= 0.0 ? mur[i][j] : p.mur,
                    cor[i][j] >= 0.0 ? cor[i][j] : sqrt(cor[i][i] * cor[j][j]));
+      if (twisting) utils::print(fp, " twisting {:.17g} {:.17g} {:.17g}", p.ktw, p.ctw, p.mutw);
+      utils::print(fp, "\n");
     }
 }

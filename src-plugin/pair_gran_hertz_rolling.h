@@ -46,6 +46,7 @@ class PairGranHertzRolling : public Pair {
   int rolling_model() const { return rolling; }
   bool damping_limited() const { return limit_damping; }
   bool rolling_radius_mean() const { return roll_mean; }
+  bool twisting_on() const { return twisting; }
 
   // the touching pairs, gathered for the batch law (law/contact_chain.h)
   using Batch = tbags::contact::Batch;
@@ -55,8 +56,10 @@ class PairGranHertzRolling : public Pair {
   int rolling;            // tbags::contact::Rolling
   bool limit_damping;
   bool roll_mean;         // rolling_radius mean: (Ri+Rj)/2, else R* (law::rolling_radius())
+  bool twisting;          // twisting sds (law::TwistingSds), else none
   int size_history;
-  int history_model;    // the rolling model the history store was made for (-1: none yet)
+  int history_model;    // history_key() the history store was made for (-1: none yet)
+  int history_key() const { return rolling + (twisting ? 8 : 0); }
   int ntypes1;            // ntypes + 1
   int freeze_group_bit;
   int neighprev;
@@ -67,6 +70,7 @@ class PairGranHertzRolling : public Pair {
   double *maxrad;
   // per type pair (explicit values; -1 = mix from the diagonal)
   double **mu, **mur, **cor;
+  double **ktw, **ctw, **mutw;    // twisting sds: stiffness, damping, cap's lever (m)
   std::vector<tbags::contact::Params> law;    // flat [i*(ntypes+1)+j]
 
   class FixDummy *fix_dummy;
@@ -111,13 +115,14 @@ class PairGranHertzRolling : public Pair {
 
   void allocate();
   void choose_kernel();
-  // compute() in pair_gran_hertz_rolling_kernel.cpp: eval() for the rolling model and the
-  // special-bond factors, then walk_pairs() for the constants (one set or per type pair) and
+  // compute() in pair_gran_hertz_rolling_kernel.cpp: eval_rolling() for twisting, eval() for the
+  // rolling model and the special-bond factors, then walk_pairs() for the constants (one set or per type pair) and
   // the build (AVX2 or baseline)
-  template <int ROLL, bool SPECIAL> void eval();
-  template <int ROLL, bool SPECIAL, bool SAME>
+  template <bool TWIST> void eval_rolling(bool special);
+  template <int ROLL, bool SPECIAL, bool TWIST> void eval();
+  template <int ROLL, bool SPECIAL, bool SAME, bool TWIST>
   TBAGS_TARGET_AVX2 void walk_pairs_avx2(const tbags::contact::Params *same);
-  template <int ROLL, bool SPECIAL, bool SAME>
+  template <int ROLL, bool SPECIAL, bool SAME, bool TWIST>
   inline void walk_pairs(const tbags::contact::Params *same);
   // the batch law's build: keyword 'kernel auto|avx2|baseline'; simd_avx2 (1: AVX2, 0: baseline)
   // is the one init_style chose and logged, an int so that extract("kernel_avx2") can give it

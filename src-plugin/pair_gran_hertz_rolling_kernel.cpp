@@ -35,35 +35,37 @@ namespace {
 typedef double v4d __attribute__((vector_size(32), may_alias));    // AtomX, aligned
 
 // the batch law, built for the baseline and for AVX2 (law::batch_law is forced inline into each)
-template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST>
+template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST, bool TWIST>
 bool batch_law_baseline(Batch &b, int n, double dt, bool clip, const law::Params *same)
 {
-  return law::batch_law<ROLL, UPDATE, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
+  return law::batch_law<ROLL, UPDATE, SAME, SPECIAL, FAST, law::ExplicitDamping, TWIST>(
+      b, n, dt, clip, same);
 }
 
 #ifdef TBAGS_HAVE_AVX2_CLONE
-template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST>
+template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST, bool TWIST>
 TBAGS_TARGET_AVX2 bool batch_law_avx2(Batch &b, int n, double dt, bool clip,
                                       const law::Params *same)
 {
-  return law::batch_law<ROLL, UPDATE, SAME, SPECIAL, FAST>(b, n, dt, clip, same);
+  return law::batch_law<ROLL, UPDATE, SAME, SPECIAL, FAST, law::ExplicitDamping, TWIST>(
+      b, n, dt, clip, same);
 }
 #endif
 
 // the build chosen at run time (avx2), the history integrated or not (integrate: not in a run's
 // set-up, which rotates no history: there the law without FAST, one instance less); SAME,
-// SPECIAL, FAST as law::batch_law()
-template <int ROLL, bool SAME, bool SPECIAL, bool FAST>
+// SPECIAL, FAST, TWIST as law::batch_law()
+template <int ROLL, bool SAME, bool SPECIAL, bool FAST, bool TWIST>
 bool run_law(Batch &b, int n, double dt, bool clip, bool avx2, bool integrate,
              const law::Params *same)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
   if (avx2)
-    return integrate ? batch_law_avx2<ROLL, true, SAME, SPECIAL, FAST>(b, n, dt, clip, same)
-                     : batch_law_avx2<ROLL, false, SAME, SPECIAL, false>(b, n, dt, clip, same);
+    return integrate ? batch_law_avx2<ROLL, true, SAME, SPECIAL, FAST, TWIST>(b, n, dt, clip, same)
+                     : batch_law_avx2<ROLL, false, SAME, SPECIAL, false, TWIST>(b, n, dt, clip, same);
 #endif
-  return integrate ? batch_law_baseline<ROLL, true, SAME, SPECIAL, FAST>(b, n, dt, clip, same)
-                   : batch_law_baseline<ROLL, false, SAME, SPECIAL, false>(b, n, dt, clip, same);
+  return integrate ? batch_law_baseline<ROLL, true, SAME, SPECIAL, FAST, TWIST>(b, n, dt, clip, same)
+                   : batch_law_baseline<ROLL, false, SAME, SPECIAL, false, TWIST>(b, n, dt, clip, same);
 }
 }    // namespace
 
@@ -75,9 +77,15 @@ void PairGranHertzRolling::compute(int eflag, int vflag)
   const bool special = atom->molecular != Atom::ATOMIC &&
       (neighbor->special_flag[1] == 2 || neighbor->special_flag[2] == 2 ||
        neighbor->special_flag[3] == 2);
-  if (rolling == law::ROLLING_EPSD) special ? eval<law::ROLLING_EPSD, true>() : eval<law::ROLLING_EPSD, false>();
-  else if (rolling == law::ROLLING_CDT) special ? eval<law::ROLLING_CDT, true>() : eval<law::ROLLING_CDT, false>();
-  else special ? eval<law::ROLLING_NONE, true>() : eval<law::ROLLING_NONE, false>();
+  if (twisting) return eval_rolling<true>(special);
+  eval_rolling<false>(special);
+}
+
+template <bool TWIST> void PairGranHertzRolling::eval_rolling(bool special)
+{
+  if (rolling == law::ROLLING_EPSD) special ? eval<law::ROLLING_EPSD, true, TWIST>() : eval<law::ROLLING_EPSD, false, TWIST>();
+  else if (rolling == law::ROLLING_CDT) special ? eval<law::ROLLING_CDT, true, TWIST>() : eval<law::ROLLING_CDT, false, TWIST>();
+  else special ? eval<law::ROLLING_NONE, true, TWIST>() : eval<law::ROLLING_NONE, false, TWIST>();
 }
 
 /* ----------------------------------------------------------------------
@@ -92,7 +100,8 @@ const law::Params *PairGranHertzRolling::uniform_params() const
       const law::Params &q = law[i * ntypes1 + j];
       if (q.kn != p.kn || q.kt != p.kt || q.cn != p.cn || q.ct != p.ct || q.mu != p.mu ||
           q.mur != p.mur || q.krs != p.krs || q.rolling != p.rolling ||
-          q.limit_damping != p.limit_damping)
+          q.limit_damping != p.limit_damping || q.roll_mean != p.roll_mean || q.ktw != p.ktw ||
+          q.ctw != p.ctw || q.mutw != p.mutw)
         return nullptr;
     }
   return &p;
@@ -201,34 +210,35 @@ TBAGS_INLINE bool PairGranHertzRolling::pack_atoms()
    batch; when full, run the law over it and scatter the result. Either walk visits every
    pair that can touch in neighbor-list order: the same contacts, the same bits.
    SPECIAL: the list may hold special-bond bits (else every factor is 1 and j needs no mask).
+   TWIST: twisting sds (constants per contact: no SAME build of it).
 ------------------------------------------------------------------------- */
 
-template <int ROLL, bool SPECIAL> void PairGranHertzRolling::eval()
+template <int ROLL, bool SPECIAL, bool TWIST> void PairGranHertzRolling::eval()
 {
   // one set of constants for all contacts (law::batch_law's SAME), else per contact
   const law::Params *same = uniform_params();
-  if (SPECIAL || (same && ROLL != law::ROLLING_NONE && !(same->mur > 0.0))) same = nullptr;
+  if (SPECIAL || TWIST || (same && ROLL != law::ROLLING_NONE && !(same->mur > 0.0))) same = nullptr;
 #ifdef TBAGS_HAVE_AVX2_CLONE
   if (simd_avx2) {
-    if constexpr (!SPECIAL)
-      if (same) return walk_pairs_avx2<ROLL, false, true>(same);
-    return walk_pairs_avx2<ROLL, SPECIAL, false>(nullptr);
+    if constexpr (!SPECIAL && !TWIST)
+      if (same) return walk_pairs_avx2<ROLL, false, true, false>(same);
+    return walk_pairs_avx2<ROLL, SPECIAL, false, TWIST>(nullptr);
   }
 #endif
-  if constexpr (!SPECIAL)
-    if (same) return walk_pairs<ROLL, false, true>(same);
-  walk_pairs<ROLL, SPECIAL, false>(nullptr);
+  if constexpr (!SPECIAL && !TWIST)
+    if (same) return walk_pairs<ROLL, false, true, false>(same);
+  walk_pairs<ROLL, SPECIAL, false, TWIST>(nullptr);
 }
 
 // packing and gather built for AVX2 too (no FMA: the same bits as the baseline build)
-template <int ROLL, bool SPECIAL, bool SAME>
+template <int ROLL, bool SPECIAL, bool SAME, bool TWIST>
 void PairGranHertzRolling::walk_pairs_avx2(const law::Params *same)
 {
-  walk_pairs<ROLL, SPECIAL, SAME>(same);
+  walk_pairs<ROLL, SPECIAL, SAME, TWIST>(same);
 }
 
 // SAME: *same holds the constants of all contacts (else per contact, b.p)
-template <int ROLL, bool SPECIAL, bool SAME>
+template <int ROLL, bool SPECIAL, bool SAME, bool TWIST>
 TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
 {
   if (list->inum == 0) return;
@@ -247,14 +257,14 @@ TBAGS_INLINE void PairGranHertzRolling::walk_pairs(const law::Params *same)
   int **firsttouch = fix_history->firstflag;
   double **firsthistory = fix_history->firstvalue;
 
-  constexpr int NH = ROLL == law::ROLLING_EPSD ? 6 : 3;    // history doubles per contact
+  constexpr int NH = law::history_size(ROLL, TWIST);    // history doubles per contact
   // not inlined into the walk: it would cost the walk registers (4 instructions per contact-step)
   auto flush = [&](int n) __attribute__((noinline)) {
     hist_rows<NH>(b, n, simd_avx2);
     // the fast path; in the rare batch where a contact needs the full law, all again with it
-    if (run_law<ROLL, SAME, SPECIAL, true>(b, n, dt, limit_damping, simd_avx2, integrate, same)) {
+    if (run_law<ROLL, SAME, SPECIAL, true, TWIST>(b, n, dt, limit_damping, simd_avx2, integrate, same)) {
       hist_rows<NH>(b, n, simd_avx2);
-      run_law<ROLL, SAME, SPECIAL, false>(b, n, dt, limit_damping, simd_avx2, integrate, same);
+      run_law<ROLL, SAME, SPECIAL, false, TWIST>(b, n, dt, limit_damping, simd_avx2, integrate, same);
     }
     rows_hist<NH>(b, n, simd_avx2);
 #ifdef TBAGS_HAVE_AVX2_CLONE

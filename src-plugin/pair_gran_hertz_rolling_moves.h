@@ -194,10 +194,12 @@ TBAGS_TARGET_AVX2 __attribute__((noinline)) void scatter_avx2(const Batch &b, in
 }
 #endif
 
+// the AVX2 transposes for the histories of 3 and 6 doubles (twisting's 4 and 7: scalar)
 template <int NH> inline void hist_rows(Batch &b, int n, bool avx2)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
-  if (avx2) return hist_rows_avx2<NH>(b, n);
+  if constexpr (NH == 3 || NH == 6)
+    if (avx2) return hist_rows_avx2<NH>(b, n);
 #endif
   hist_rows_scalar<NH>(b, 0, n);
 }
@@ -205,7 +207,8 @@ template <int NH> inline void hist_rows(Batch &b, int n, bool avx2)
 template <int NH> inline void rows_hist(Batch &b, int n, bool avx2)
 {
 #ifdef TBAGS_HAVE_AVX2_CLONE
-  if (avx2) return rows_hist_avx2<NH>(b, n);
+  if constexpr (NH == 3 || NH == 6)
+    if (avx2) return rows_hist_avx2<NH>(b, n);
 #endif
   rows_hist_scalar<NH>(b, 0, n);
 }

@@ -5,8 +5,9 @@
    for bit, in every variant.
 
    The stages, in order: (1) geometry and Hertz force, (2) normal force, (3) tangential
-   history, (4) tangential force, (5) rolling history, (6) rolling force; the damping a
-   sub-model (explicit, or implicit for the plate fix). They run as five loops over the lanes
+   history, (4) tangential force, (5) rolling history, (6) rolling force, (7) twisting (where
+   asked); the damping a sub-model (explicit, or implicit for the plate fix). They run as loops
+   over the lanes
    rather than one, so that each loop keeps few values live (no register spills) and the
    compiler vectorises it (lanes.h's pragma); the State goes from one loop to the next in the
    lanes' rows. Neither the baseline nor the AVX2 build contracts to FMA: a lane gives the bits
@@ -26,7 +27,7 @@ namespace contact {
 // dx = x_i - x_j (a plate: from its contact point to x_i), radii (a plate's: 0), masses
 // (negative: frozen, see effective_frozen()) or, for one contact (W = 1), m* and R* given in
 // meff and reff, special-bond factor, relative velocity vr = v_i - v_j, angular velocities,
-// history rows h (3, or 6 with EPSD).
+// history rows h (tangential 3, then EPSD's 3, then the twist angle: twist_row()).
 // Out: f (on i; j gets -f), torques ti and tj, h updated; for one contact also the State
 // (fn, fne, delta, r) and fs, fr below. The state's rows carry it from one loop to the next.
 template <int W> struct alignas(64) Lanes {
@@ -36,11 +37,11 @@ template <int W> struct alignas(64) Lanes {
   double *hist[N];
   const Params *p[N];
   double dx[3][N], radi[N], radj[N], mi[N], mj[N], factor[N];
-  double vr[3][N], wi[3][N], wj[3][N], h[6][N];
+  double vr[3][N], wi[3][N], wj[3][N], h[7][N];
   double f[3][N], ti[3][N], tj[3][N];
   // the State, row by row (lane_state())
-  double n[3][N], vt[3][N], vroll[3][N], vn[N], r[N], delta[N], a[N], meff[N], rr[N], fne[N],
-      fn[N], sqma[N];
+  double n[3][N], vt[3][N], vroll[3][N], wt[N], vn[N], r[N], delta[N], a[N], meff[N], rr[N],
+      fne[N], fn[N], sqma[N];
   double reff[N];    // one contact's R* (given)
   // one contact's parts (Result): tangential force, rolling pseudo-force
   double fs[3][N], fr[3][N];
@@ -51,6 +52,11 @@ template <int W> struct alignas(64) Lanes {
 };
 using Batch = Lanes<32>;    // the pair's: 32 contacts (64 took 2 % longer)
 
+// the history's layout per contact: tangential displacement (3), the rolling model's (EPSD: 3),
+// then the twist angle (TWIST: 1)
+constexpr int twist_row(int rolling) { return 3 + (rolling == ROLLING_EPSD ? EpsdRolling::HISTORY : 0); }
+constexpr int history_size(int rolling, bool twist) { return twist_row(rolling) + (twist ? 1 : 0); }
+
 // lane l's State from its rows (the geometry loop writes them, normal_force's loop fn and sqma)
 template <int W> TBAGS_INLINE State lane_state(const Lanes<W> &b, int l)
 {
@@ -58,6 +64,7 @@ template <int W> TBAGS_INLINE State lane_state(const Lanes<W> &b, int l)
   s.n = row3(b.n, l);
   s.vt = row3(b.vt, l);
   s.vroll = row3(b.vroll, l);
+  s.wt = b.wt[l];
   s.vn = b.vn[l];
   s.r = b.r[l];
   s.delta = b.delta[l];
@@ -140,14 +147,20 @@ struct ImplicitDamping {
 //            when a contact needed the exact rotation; the caller must then run the batch again
 //            without FAST from the old history rows. When it returns false, all is the law's.
 //   Damping  ExplicitDamping or (one contact of the plate fix) ImplicitDamping
+//   TWIST    the twisting resistance (TwistingSds) where p.ktw > 0, history row twist_row(ROLL)
 // clip: limit_damping; wall: the contacts are with a plate (torque arm r_i, not r_i - d/2).
-template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST, class Damping = ExplicitDamping, int W>
+template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST,
+          class Damping = ExplicitDamping, bool TWIST = false, int W>
 TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Params *same,
                             bool wall = false)
 {
   using vec::V3;
   using Rolling = typename RollingModel<ROLL>::type;
   constexpr bool ONE = Lanes<W>::ONE;
+  // the special-bond factor scales the torques once all are summed: in the last loop that adds one
+  constexpr bool LAST_ROLL = ROLL != ROLLING_NONE && !TWIST;
+  constexpr bool LAST_TANG = ROLL == ROLLING_NONE && !TWIST;
+  constexpr int TW = twist_row(ROLL);
   // 64 bits like the lanes: a 32-bit flag makes the vectoriser take 8 lanes (and spill)
   long long redo = 0;
   // loop 1: geometry and Hertz force (stage 1)
@@ -159,6 +172,7 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
     set_row3(b.n, l, s.n);
     set_row3(b.vt, l, s.vt);
     if (ROLL != ROLLING_NONE) set_row3(b.vroll, l, s.vroll);
+    if (TWIST) b.wt[l] = s.wt;
     b.vn[l] = s.vn;
     b.delta[l] = s.delta;
     b.a[l] = s.a;
@@ -197,10 +211,10 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
     const Forces o = contact_forces(s, fs, b.radi[l], b.radj[l], wall);
     const double fl = SPECIAL ? b.factor[l] : 1.0;
     set_row3(b.f, l, fl * o.f);
-    if constexpr (ROLL == ROLLING_NONE) {
+    if constexpr (LAST_TANG) {
       set_row3(b.ti, l, fl * o.ti);
       set_row3(b.tj, l, fl * o.tj);
-    } else {    // the rolling loop adds its torque first, then applies the factor
+    } else {    // the rolling or twisting loop adds its torque first, then applies the factor
       set_row3(b.ti, l, o.ti);
       set_row3(b.tj, l, o.tj);
     }
@@ -230,17 +244,33 @@ TBAGS_INLINE bool batch_law(Lanes<W> &b, int n, double dt, bool clip, const Para
       const bool on = rolling_acts<SAME>(p);
       const V3 troll = rolling_torque(s, fr);
       const V3 ti = row3(b.ti, l), tj = row3(b.tj, l);
-      const double fl = SPECIAL ? b.factor[l] : 1.0;
+      const double fl = (SPECIAL && LAST_ROLL) ? b.factor[l] : 1.0;
       set_row3(b.ti, l, fl * vec::select(on, ti + troll, ti));
       set_row3(b.tj, l, fl * vec::select(on, tj - troll, tj));
+    }
+  }
+  if constexpr (TWIST) {
+    // loop 6: twisting history and moment (stage 7), its torque added, then the factor
+    TBAGS_PRAGMA_SIMD
+    for (int l = 0; l < n; l++) {
+      const Params &p = SAME ? *same : *b.p[l];
+      const State s = lane_state(b, l);
+      double theta = b.h[TW][l];
+      if (UPDATE) TwistingSds::history(p, s, dt, theta);
+      const V3 ttw = twisting_torque(s, TwistingSds::moment(p, s, theta));
+      b.h[TW][l] = theta;
+      const double fl = SPECIAL ? b.factor[l] : 1.0;
+      set_row3(b.ti, l, fl * (row3(b.ti, l) + ttw));
+      set_row3(b.tj, l, fl * (row3(b.tj, l) - ttw));
     }
   }
   return redo != 0;
 }
 
-// One contact (the plate fix, the pair's single(), tests), rolling model fixed at compile
-// time: the chain over one lane. hist: 3 (or 6 for EPSD) doubles, integrated when update.
-template <int ROLL>
+// One contact (the plate fix, the pair's single(), tests), rolling model and twisting fixed at
+// compile time: the chain over one lane. hist: history_size(ROLL, TWIST) doubles, integrated
+// when update.
+template <int ROLL, bool TWIST = false>
 TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, bool update, Result &o)
 {
   using namespace vec;
@@ -256,6 +286,9 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
   set_row3(b.wj, 0, load3(c.wj));
   set_row3(b.h, 0, load3(hist));
   set_row3(b.h + 3, 0, ROLL == ROLLING_EPSD ? load3(hist + 3) : V3{0.0, 0.0, 0.0});
+  constexpr int TW = twist_row(ROLL);
+  b.h[6][0] = 0.0;
+  if (TWIST) b.h[TW][0] = hist[TW];
   set_row3(b.fr, 0, V3{0.0, 0.0, 0.0});    // no rolling: the chain leaves it
   set_row3(b.vroll, 0, V3{0.0, 0.0, 0.0});
   b.fn[0] = b.sqma[0] = 0.0;
@@ -264,14 +297,15 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
     b.hm[0] = c.hm;
     set_row3(b.vrd, 0, load3(c.vdi) - load3(c.vj));
     set_row3(b.wid, 0, load3(c.wdi));
-    if (update) batch_law<ROLL, true, false, false, false, ImplicitDamping>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
-    else batch_law<ROLL, false, false, false, false, ImplicitDamping>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+    if (update) batch_law<ROLL, true, false, false, false, ImplicitDamping, TWIST>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+    else batch_law<ROLL, false, false, false, false, ImplicitDamping, TWIST>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
   } else {
-    if (update) batch_law<ROLL, true, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
-    else batch_law<ROLL, false, false, false, false>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+    if (update) batch_law<ROLL, true, false, false, false, ExplicitDamping, TWIST>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
+    else batch_law<ROLL, false, false, false, false, ExplicitDamping, TWIST>(b, 1, c.dt, p.limit_damping, nullptr, c.wall);
   }
   store3(row3(b.h, 0), hist);
   if (ROLL == ROLLING_EPSD) store3(row3(b.h + 3, 0), hist + 3);
+  if (TWIST) hist[TW] = b.h[TW][0];
   store3(row3(b.f, 0), o.f);
   store3(row3(b.ti, 0), o.ti);
   store3(row3(b.tj, 0), o.tj);
@@ -283,12 +317,19 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
   o.r = b.r[0];
 }
 
-// One contact, rolling model from the parameters.
+// One contact, rolling model and twisting from the parameters (twisting where p.ktw > 0: hist
+// then holds history_size(p.rolling, true) doubles).
+template <bool TWIST>
+inline void compute_twist(const Params &p, const Contact &c, double *hist, bool update, Result &o)
+{
+  if (p.rolling == ROLLING_EPSD) compute_t<ROLLING_EPSD, TWIST>(p, c, hist, update, o);
+  else if (p.rolling == ROLLING_CDT) compute_t<ROLLING_CDT, TWIST>(p, c, hist, update, o);
+  else compute_t<ROLLING_NONE, TWIST>(p, c, hist, update, o);
+}
 inline void compute(const Params &p, const Contact &c, double *hist, bool update, Result &o)
 {
-  if (p.rolling == ROLLING_EPSD) compute_t<ROLLING_EPSD>(p, c, hist, update, o);
-  else if (p.rolling == ROLLING_CDT) compute_t<ROLLING_CDT>(p, c, hist, update, o);
-  else compute_t<ROLLING_NONE>(p, c, hist, update, o);
+  if (p.ktw > 0.0) compute_twist<true>(p, c, hist, update, o);
+  else compute_twist<false>(p, c, hist, update, o);
 }
 
 }    // namespace contact

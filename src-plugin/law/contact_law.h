@@ -3,8 +3,9 @@
    one contact's input (Touch) and State, and the stages of the law, each a branch-free function
    f(Params, State, history) (conditions are selects) so that a contact can run in a SIMD lane:
    geometry, normal_force, tangential_history, tangential_force, contact_forces, the rolling
-   sub-models (NoRolling, EpsdRolling, CdtRolling: history and force) and rolling_torque, and the
-   implicit damping's implicit_normal and implicit_tangential. contact_chain.h chains them, once,
+   sub-models (NoRolling, EpsdRolling, CdtRolling: history and force) and rolling_torque, the
+   twisting sub-model (TwistingSds) and twisting_torque, and the implicit damping's
+   implicit_normal and implicit_tangential. contact_chain.h chains them, once,
    for pair gran/hertz/rolling and fix wall/gran/servo (a plate is a particle of infinite radius
    and mass). Unit-tested alone.
 
@@ -18,6 +19,8 @@
      rolling EPSD: M_r = R* n x F_r, F_r = -k_s xi_r with k_s = 2.25 mu_r^2 S_n so that the
             rolling stiffness is k_r = 2.25 mu_r^2 S_n R*^2 (Ai et al. 2011), |M_r| <= mu_r R* |F_n|
      rolling CDT:  |M_r| = mu_r R* |F_n| against the relative rolling velocity
+     twisting SDS: M_t = -k_tw theta - c_tw (w_i - w_j).n, |M_t| <= mu_tw |F_n|, theta the
+            integrated twist angle (reset to the cap on slipping)
    Algorithm order and conventions follow LAMMPS pair granular (hertz/material, mindlin,
    coeff_restitution, rolling sds) so the two agree to round-off where the physics is the same.
 */
@@ -414,12 +417,6 @@ TBAGS_INLINE vec::V3 twisting_torque(const State &s, double m) { return m * s.n;
 template <int ROLL> struct RollingModel { using type = NoRolling; };
 template <> struct RollingModel<ROLLING_EPSD> { using type = EpsdRolling; };
 template <> struct RollingModel<ROLLING_CDT> { using type = CdtRolling; };
-
-// history doubles per contact: tangential displacement (3) and the rolling model's
-inline int history_size(int rolling)
-{
-  return 3 + (rolling == ROLLING_EPSD ? EpsdRolling::HISTORY : 0);
-}
 
 // The rolling torque on i (j gets its opposite): R_r n x fr.
 TBAGS_INLINE vec::V3 rolling_torque(const State &s, const vec::V3 &fr)

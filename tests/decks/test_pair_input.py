@@ -48,6 +48,8 @@ def test_unknown_style_without_plugin(tmp_path):
     res = lmprun.run(deck(), tmp_path, plugin_path=False)
     assert res.returncode != 0 and "gran/hertz/rolling" in res.error_line()
 
+# twisting sds without its coefficients
+TWIST_PAIR = GOOD_PAIR.replace("epsd", "epsd twisting sds")
 
 BAD = [
     ("pair_style gran/hertz/rolling", "missing rolling model"),
@@ -73,6 +75,14 @@ BAD = [
      "'material' sets a type's E and nu"),
     ("pair_style gran/hertz/rolling epsd\npair_coeff * * friction 0.31 material 1.8e9",
      "keyword 'material' needs 2 value(s)"),
+    ("pair_style gran/hertz/rolling epsd twisting marshall", "twisting must be none or sds"),
+    ("pair_style gran/hertz/rolling epsd twisting", "twisting must be none or sds"),
+    (GOOD_PAIR + " twisting 1e-5 1e-10 1e-6", "needs 'twisting sds' in the pair_style command"),
+    (TWIST_PAIR, "needs 'twisting k_tw c_tw mu_tw'"),
+    (TWIST_PAIR + " twisting -1e-5 1e-10 1e-6", "stiffness k_tw > 0"),
+    (TWIST_PAIR + " twisting 1e-5 -1e-10 1e-6", "damping c_tw >= 0"),
+    (TWIST_PAIR + " twisting 1e-5 1e-10 -1e-6", "mu_tw >= 0"),
+    (TWIST_PAIR + " twisting 1e-5 1e-10", "keyword 'twisting' needs 3 value(s)"),
 ]
 
 
@@ -96,21 +106,31 @@ def test_missing_comm_modify_vel(tmp_path):
     assert "comm_modify vel yes" in res.error_line()
 
 
-def test_write_data_round_trip(tmp_path):
-    text = deck().replace("run 0", "run 0\nwrite_data rt.data pair ij")
+@pytest.mark.parametrize("twist", [False, True])
+def test_write_data_round_trip(tmp_path, twist):
+    pair = GOOD_PAIR
+    if twist:
+        # types 1 and 2 given, the 1-2 pair mixed
+        pair = (GOOD_PAIR.replace("epsd", "epsd twisting sds").replace("* *", "1 1")
+                + " twisting 1e-5 1e-10 1e-6\n"
+                "pair_coeff 2 2 material 0.9e9 0.3 friction 0.5 rolling 0.1 restitution 0.5 "
+                "twisting 4e-5 4e-10 4e-6")
+    text = deck(pair=pair).replace("run 0", "run 0\nwrite_data rt.data pair ij")
     lmprun.run(text, tmp_path).check()
     again = """
 units si
 atom_style sphere
 comm_modify vel yes
-pair_style gran/hertz/rolling epsd
+pair_style gran/hertz/rolling epsd%s
 read_data rt.data
 run 0
 write_data rt2.data pair ij
-"""
+""" % (" twisting sds" if twist else "")
     lmprun.run(again, tmp_path).check()
     def coeffs(p):
         t = (tmp_path / p).read_text()
         return t[t.index("PairIJ Coeffs"):t.index("Atoms")]
     assert "material 1800000000 0.10000000000000001 friction 0.31" in coeffs("rt.data")
+    if twist:    # the 1-2 pair mixed geometrically: sqrt(1e-5 4e-5) = 2e-5
+        assert "1 2 friction" in coeffs("rt.data") and " twisting 2.0000000000000002e-05" in coeffs("rt.data")
     assert coeffs("rt.data") == coeffs("rt2.data")

@@ -1,6 +1,7 @@
 """MPI and newton agreement and restart continuity of pair gran/hertz/rolling (EPSD rolling on):
 1, 2 and 4 ranks, newton on and off, and a restart half-way give the same trajectories; a
-write_restart between two runs changes nothing, also when atoms cross periodic boundaries."""
+write_restart between two runs changes nothing, also when atoms cross periodic boundaries. The
+same with twisting sds on (its history, its coefficients in the restart file)."""
 import numpy as np
 import pytest
 
@@ -59,8 +60,18 @@ def data(tmp_path_factory):
 DRIFT = "velocity all set 3.0 2.0 1.0"
 
 
-def run_deck(wd, data, ranks=1, newton="on", checkpoint=False, drift=False):
-    lmprun.run(DECK, wd, np_ranks=ranks, variables={
+# twisting sds on (the coefficients per type; 1-2 mixed)
+TWIST = {"pair_style gran/hertz/rolling epsd": "pair_style gran/hertz/rolling epsd twisting sds",
+         "restitution 0.2\npair_coeff 2 2": "restitution 0.2 twisting 2e-5 2e-10 2e-6\npair_coeff 2 2",
+         "restitution 0.2\npair_coeff 1 2": "restitution 0.2 twisting 5e-6 1e-10 1e-6\npair_coeff 1 2"}
+
+
+def run_deck(wd, data, ranks=1, newton="on", checkpoint=False, drift=False, twist=False):
+    deck = DECK
+    for old, new in (TWIST.items() if twist else ()):
+        assert old in deck
+        deck = deck.replace(old, new)
+    lmprun.run(deck, wd, np_ranks=ranks, variables={
         "data": data, "newton": newton, "n1": NSTEPS // 2, "n2": NSTEPS // 2,
         "checkpoint": "write_restart half.restart" if checkpoint else "",
         "drift": DRIFT if drift else ""}).check()
@@ -111,3 +122,23 @@ def test_restart_continues(reference):
     dx, dv = compare(reference / "final_restart.dump", reference / "final.dump")
     print("restart: max |dx| = %.3e m, max |dv|/max|v| = %.3e" % (dx, dv))
     assert dx < 1e-12 and dv < 1e-8
+
+
+def test_twisting_ranks_newton_and_restart(tmp_path, data):
+    """twisting sds: 2 ranks with newton off give the 1-rank trajectories (the twist angle kept,
+    not negated, when newton off hands the history from i's view to j's), and read_restart
+    continues them (the history of 7 doubles and the coefficients in the file)."""
+    ref = run_deck(tmp_path / "np1", data, checkpoint=True, twist=True)
+    run_deck(tmp_path / "np2", data, 2, "off", twist=True)
+    dx, dv = compare(tmp_path / "np2" / "final.dump", ref / "final.dump")
+    print("twisting, 2 ranks newton off: max |dx| = %.3e m, max |dv|/max|v| = %.3e" % (dx, dv))
+    assert dx < 1e-12 and dv < 1e-8
+    lmprun.run(RESTART, ref, variables={"n2": NSTEPS // 2}).check()
+    dx, dv = compare(ref / "final_restart.dump", ref / "final.dump")
+    print("twisting, restart: max |dx| = %.3e m, max |dv|/max|v| = %.3e" % (dx, dv))
+    assert dx < 1e-12 and dv < 1e-8
+    # twisting acted: the run without it ends elsewhere
+    plain = run_deck(tmp_path / "plain", data)
+    dx, _ = compare(plain / "final.dump", ref / "final.dump")
+    print("without twisting: max |dx| = %.3e m" % dx)
+    assert dx > 1e-10

@@ -1,7 +1,8 @@
 // Unit tests of law/contact_chain.h: the batch gives, bit for bit, what the law's stages
 // (contact_law.h) chained by hand for one contact give, for every rolling model and every
 // variant of the batch (history update, one set of constants or one per contact, special-bond
-// factors, fast path, frozen particles), and so does compute() for one contact and a plate.
+// factors, fast path, frozen particles, twisting), and so does compute() for one contact and a
+// plate.
 
 #include "law/contact_chain.h"
 
@@ -23,10 +24,11 @@ struct Out {
   double fn, fne, delta, r;
 };
 
-// The stages chained by hand, one contact (the reference): its outputs, ht and hr updated.
-template <int ROLL, bool UPDATE>
+// The stages chained by hand, one contact (the reference): its outputs, ht, hr and the twist
+// angle tw updated.
+template <int ROLL, bool UPDATE, bool TWIST = false>
 Out reference_contact(const Params &p, bool clip, const Touch &t, bool wall, double dt, V3 &ht,
-                      V3 &hr)
+                      V3 &hr, double &tw)
 {
   using Rolling = typename RollingModel<ROLL>::type;
   State s = geometry(p, t, wall);
@@ -44,19 +46,31 @@ Out reference_contact(const Params &p, bool clip, const Touch &t, bool wall, dou
     o.ti = tbags::vec::select(on, o.ti + troll, o.ti);
     o.tj = tbags::vec::select(on, o.tj - troll, o.tj);
   }
+  if constexpr (TWIST) {
+    if (UPDATE) TwistingSds::history(p, s, dt, tw);
+    const V3 ttw = twisting_torque(s, TwistingSds::moment(p, s, tw));
+    o.ti = o.ti + ttw;
+    o.tj = o.tj - ttw;
+  }
   return o;
 }
 
 // Two materials (sand and a yarn-like polymer), rolling on in the first and both ways for the
-// second when mur2 is 0; limit_damping as given.
+// second when mur2 is 0; limit_damping as given; twist: a twisting spring in the first (its
+// cap reached by some contacts), none in the second.
 struct Materials {
   Params p[2];
-  Materials(int roll, double mur2, bool clip)
+  Materials(int roll, double mur2, bool clip, bool twist = false)
   {
     p[0] = make_params(mix_E(1.8e9, 0.1, 1.8e9, 0.1), mix_G(1.8e9, 0.1, 1.8e9, 0.1), 0.2, 0.31, 0.05,
                        roll, clip);
     p[1] = make_params(mix_E(1.8e9, 0.1, 0.9e9, 0.3), mix_G(1.8e9, 0.1, 0.9e9, 0.3), 0.6, 0.5, mur2,
                        roll, clip);
+    if (twist) {
+      p[0].ktw = 1e-3;
+      p[0].ctw = 1e-9;
+      p[0].mutw = 2e-8;
+    }
   }
 };
 
@@ -96,12 +110,13 @@ void random_contact(Batch &b, int l, std::mt19937_64 &g, const Params *p, double
     b.h[3 * s + 1][l] = h.y;
     b.h[3 * s + 2][l] = h.z;
   }
+  b.h[6][l] = 1e-3 * u(g);    // a twist angle (EPSD's twist row; else row 3 is it)
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // The batch of n contacts against reference_contact() per contact; returns batch_law's redo flag.
-template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST>
+template <int ROLL, bool UPDATE, bool SAME, bool SPECIAL, bool FAST, bool TWIST = false>
 bool check_batch(const Materials &m, int n, double tilt, bool clip, unsigned seed)
 {
   auto b = std::make_unique<Batch>();
@@ -111,7 +126,9 @@ bool check_batch(const Materials &m, int n, double tilt, bool clip, unsigned see
     random_contact(*b, l, g, SAME ? same : &m.p[l % 2], tilt, true);
   const auto in = std::make_unique<Batch>(*b);
   const double dt = 1e-6;
-  const bool redo = batch_law<ROLL, UPDATE, SAME, SPECIAL, FAST>(*b, n, dt, clip, same);
+  const bool redo =
+      batch_law<ROLL, UPDATE, SAME, SPECIAL, FAST, ExplicitDamping, TWIST>(*b, n, dt, clip, same);
+  constexpr int TW = twist_row(ROLL);
   if (FAST && redo) return true;
   for (int l = 0; l < n; l++) {
     const Batch &a = *in;
@@ -124,9 +141,13 @@ bool check_batch(const Materials &m, int n, double tilt, bool clip, unsigned see
     if (a.mj[l] < 0.0) meff = mi;
     const V3 dx = row3(a.dx, l);
     V3 ht = row3(a.h, l), hr = row3(a.h + 3, l);
-    const Out o = reference_contact<ROLL, UPDATE>(
+    double tw = a.h[TW][l];
+    const Out o = reference_contact<ROLL, UPDATE, TWIST>(
         p, clip, Touch{dx, row3(a.vr, l), row3(a.wi, l), row3(a.wj, l), a.radi[l], a.radj[l], meff, reff},
-        false, dt, ht, hr);
+        false, dt, ht, hr, tw);
+    if (TWIST)
+      EXPECT_TRUE(same_bits(b->h[TW][l], tw)) << "twist angle of contact " << l << ": batch "
+                                               << b->h[TW][l] << ", by hand " << tw;
     const double fl = SPECIAL ? a.factor[l] : 1.0;
     const V3 want[5] = {fl * o.f, fl * o.ti, fl * o.tj, ht, hr};
     const V3 got[5] = {row3(b->f, l), row3(b->ti, l), row3(b->tj, l), row3(b->h, l),
@@ -143,23 +164,23 @@ bool check_batch(const Materials &m, int n, double tilt, bool clip, unsigned see
   return redo;
 }
 
-template <int ROLL> void check_all_variants(double mur2, bool clip)
+template <int ROLL, bool TWIST = false> void check_all_variants(double mur2, bool clip)
 {
-  const Materials m(ROLL, mur2, clip);
+  const Materials m(ROLL, mur2, clip, TWIST);
   // 29 contacts (a partial last vector); histories tilted out of the plane by 1e-2 (the exact
   // rotation; the fast path reports it), 1e-4 (its series) and 1e-9 (no rotation where the
   // spring force is small)
   const double tilts[3] = {1e-2, 1e-4, 1e-9};
   for (double tilt : tilts) {
-    check_batch<ROLL, true, false, false, false>(m, 29, tilt, clip, 1);
-    check_batch<ROLL, true, false, true, false>(m, 29, tilt, clip, 2);
-    check_batch<ROLL, false, false, false, false>(m, 29, tilt, clip, 3);
-    check_batch<ROLL, false, false, true, false>(m, 29, tilt, clip, 4);
-    check_batch<ROLL, true, false, true, true>(m, 29, tilt, clip, 6);
-    check_batch<ROLL, false, false, false, true>(m, 29, tilt, clip, 8);
+    check_batch<ROLL, true, false, false, false, TWIST>(m, 29, tilt, clip, 1);
+    check_batch<ROLL, true, false, true, false, TWIST>(m, 29, tilt, clip, 2);
+    check_batch<ROLL, false, false, false, false, TWIST>(m, 29, tilt, clip, 3);
+    check_batch<ROLL, false, false, true, false, TWIST>(m, 29, tilt, clip, 4);
+    check_batch<ROLL, true, false, true, true, TWIST>(m, 29, tilt, clip, 6);
+    check_batch<ROLL, false, false, false, true, TWIST>(m, 29, tilt, clip, 8);
     if (ROLL == ROLLING_NONE || mur2 > 0.0) {    // one set for all contacts: rolling on for all
-      check_batch<ROLL, true, true, false, false>(m, 29, tilt, clip, 5);
-      check_batch<ROLL, true, true, false, true>(m, 29, tilt, clip, 7);
+      check_batch<ROLL, true, true, false, false, TWIST>(m, 29, tilt, clip, 5);
+      check_batch<ROLL, true, true, false, true, TWIST>(m, 29, tilt, clip, 7);
     }
   }
 }
@@ -170,6 +191,10 @@ TEST(Chain, EpsdRollingOffForOneMaterial) { check_all_variants<ROLLING_EPSD>(0.0
 TEST(Chain, CdtEqualsContactLane) { check_all_variants<ROLLING_CDT>(0.1, false); }
 TEST(Chain, NoneEqualsContactLane) { check_all_variants<ROLLING_NONE>(0.0, false); }
 TEST(Chain, LimitDampingEqualsContactLane) { check_all_variants<ROLLING_EPSD>(0.1, true); }
+// twisting after each rolling model (the special factor then applied in its loop)
+TEST(Chain, TwistingEpsdEqualsContactLane) { check_all_variants<ROLLING_EPSD, true>(0.1, false); }
+TEST(Chain, TwistingCdtEqualsContactLane) { check_all_variants<ROLLING_CDT, true>(0.1, false); }
+TEST(Chain, TwistingNoneEqualsContactLane) { check_all_variants<ROLLING_NONE, true>(0.0, false); }
 
 // The fast path: a tilt the series cannot take must be reported (the caller then redoes the
 // batch without it); a small one must not, and then gives the law's bits (checked above).
@@ -182,9 +207,10 @@ TEST(Chain, FastPathReportsLargeTilt)
 
 // compute(), one contact (the plate fix, single()), is the same chain: every output, a pair of
 // particles and a plate (radius 0, torque arm r_i), history integrated or not.
-template <int ROLL> void check_one_contact(bool update)
+template <int ROLL, bool TWIST = false> void check_one_contact(bool update)
 {
-  const Materials m(ROLL, 0.1, false);
+  const Materials m(ROLL, 0.1, false, TWIST);
+  constexpr int TW = twist_row(ROLL);
   std::mt19937_64 g(11);
   for (int k = 0; k < 40; k++) {
     auto b = std::make_unique<Batch>();
@@ -201,7 +227,7 @@ template <int ROLL> void check_one_contact(bool update)
     double dx[3];
     const double shrink = wall ? b->radi[0] / (b->radi[0] + b->radj[0]) : 1.0;
     for (int d = 0; d < 3; d++) dx[d] = shrink * b->dx[d][0];
-    double vi[3], vj[3] = {0.0, 0.0, 0.0}, wi[3], wj[3], hist[6];
+    double vi[3], vj[3] = {0.0, 0.0, 0.0}, wi[3], wj[3], hist[7];
     for (int d = 0; d < 3; d++) {
       vi[d] = b->vr[d][0];
       wi[d] = b->wi[d][0];
@@ -209,6 +235,7 @@ template <int ROLL> void check_one_contact(bool update)
       hist[d] = b->h[d][0];
       hist[3 + d] = b->h[3 + d][0];
     }
+    hist[6] = b->h[6][0];
     Contact c;
     c.dx = dx;
     c.reff = reff;
@@ -224,10 +251,17 @@ template <int ROLL> void check_one_contact(bool update)
     Result o;
     compute(m.p[k % 2], c, hist, update, o);
     V3 ht = row3(b->h, 0), hr = row3(b->h + 3, 0);
+    double tw = b->h[TW][0];
     using tbags::vec::load3;
     const Touch t{load3(dx), load3(vi), load3(wi), load3(wj), c.radi, radj, meff, reff};
-    const Out want = update ? reference_contact<ROLL, true>(m.p[k % 2], false, t, wall, 1e-6, ht, hr)
-                            : reference_contact<ROLL, false>(m.p[k % 2], false, t, wall, 1e-6, ht, hr);
+    // compute() twists where the constants have a twisting spring
+    const Params &p = m.p[k % 2];
+    const Out want = (p.ktw > 0.0)
+        ? (update ? reference_contact<ROLL, true, true>(p, false, t, wall, 1e-6, ht, hr, tw)
+                  : reference_contact<ROLL, false, true>(p, false, t, wall, 1e-6, ht, hr, tw))
+        : (update ? reference_contact<ROLL, true>(p, false, t, wall, 1e-6, ht, hr, tw)
+                  : reference_contact<ROLL, false>(p, false, t, wall, 1e-6, ht, hr, tw));
+    EXPECT_TRUE(same_bits(hist[TW], p.ktw > 0.0 ? tw : b->h[TW][0])) << "twist angle of contact " << k;
     const V3 w[7] = {want.f, want.ti, want.tj, want.fs, want.fr, ht, hr};
     const double *got[7] = {o.f, o.ti, o.tj, o.fs, o.fr, hist, hist + 3};
     for (int q = 0; q < (ROLL == ROLLING_EPSD ? 7 : 6); q++)
@@ -242,3 +276,9 @@ template <int ROLL> void check_one_contact(bool update)
 TEST(Chain, OneContactEpsd) { check_one_contact<ROLLING_EPSD>(true); check_one_contact<ROLLING_EPSD>(false); }
 TEST(Chain, OneContactCdt) { check_one_contact<ROLLING_CDT>(true); check_one_contact<ROLLING_CDT>(false); }
 TEST(Chain, OneContactNone) { check_one_contact<ROLLING_NONE>(true); check_one_contact<ROLLING_NONE>(false); }
+TEST(Chain, OneContactTwisting)
+{
+  check_one_contact<ROLLING_EPSD, true>(true);
+  check_one_contact<ROLLING_EPSD, true>(false);
+  check_one_contact<ROLLING_NONE, true>(true);
+}
