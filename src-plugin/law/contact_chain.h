@@ -287,10 +287,10 @@ TBAGS_INLINE void compute_t(const Params &p, const Contact &c, double *hist, boo
   set_row3(b.h, 0, load3(hist));
   set_row3(b.h + 3, 0, ROLL == ROLLING_EPSD ? load3(hist + 3) : V3{0.0, 0.0, 0.0});
   constexpr int TW = twist_row(ROLL);
-  b.h[6][0] = 0.0;
   if (TWIST) b.h[TW][0] = hist[TW];
   set_row3(b.fr, 0, V3{0.0, 0.0, 0.0});    // no rolling: the chain leaves it
   set_row3(b.vroll, 0, V3{0.0, 0.0, 0.0});
+  b.wt[0] = 0.0;    // no twisting: the geometry loop leaves it (lane_state() reads it)
   b.fn[0] = b.sqma[0] = 0.0;
   const bool implicit = c.hm > 0.0;    // damping against the end of the step's velocities
   if (implicit) {
