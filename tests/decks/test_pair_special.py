@@ -111,7 +111,7 @@ def test_reissued_pair_style_with_another_rolling_model(tmp_path):
     import numpy as np
     data = packing.make(tmp_path / "packing")
     res = lmprun.run(REISSUE_A, tmp_path, variables={"data": data}).check()
-    assert "the rolling model changed since the last run" in res.output
+    assert "the rolling or twisting model changed since the last run" in res.output
     lmprun.run(REISSUE_B, tmp_path).check()
     cols, a = lmprun.read_dump(tmp_path / "final.dump")
     _, b = lmprun.read_dump(tmp_path / "fresh.dump")
@@ -119,3 +119,19 @@ def test_reissued_pair_style_with_another_rolling_model(tmp_path):
     dv = lmprun.max_rel_diff(a[:, 4:10], b[:, 4:10])
     print("re-issued against fresh: max |dx| %.2e m, max |dv|/max|v| %.2e" % (dx, dv))
     assert dx < 1e-12 and dv < 1e-9
+
+
+def test_reissued_pair_style_with_twisting_switched_on(tmp_path):
+    """The same rolling model, twisting switched on by a re-issued pair_style: the record grows
+    by the twist angle, so the store is made anew with the warning (reading the old, shorter
+    records would run past them) and the run goes on."""
+    data = packing.make(tmp_path / "packing")
+    first, second = REISSUE_A.split("write_data mid.data nocoeff\n")
+    first = first.replace("rolling none\n", "rolling epsd\n").replace(
+        "restitution 0.2\n", "rolling 0.05 restitution 0.2\n")
+    second = second.replace("rolling epsd\n", "rolling epsd twisting sds\n").replace(
+        "restitution 0.2\n", "restitution 0.2 twisting 1e-5 1e-10 1e-6\n")
+    deck = first + second
+    assert deck.count("twisting sds") == 1 and deck.count("rolling epsd") == 2
+    res = lmprun.run(deck, tmp_path, variables={"data": data}).check()
+    assert res.output.count("the rolling or twisting model changed since the last run") == 1
