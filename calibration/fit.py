@@ -48,6 +48,14 @@ def parse_args(argv):
                    default="effective", help="the rolling resistance's lever arm (pair_style "
                    "gran/hertz/rolling rolling_radius): R* (effective, the decks') or (Ri+Rj)/2 (mean, "
                    "YADE's Rmean)")
+    p.add_argument("--twisting", choices=("none", "sds"), default="none",
+                   help="twisting resistance (pair_style gran/hertz/rolling twisting): none (the "
+                   "decks') or sds with the mean contact's own coefficients at each sigma3 "
+                   "(tbagscal.common.twisting_coeffs: k_tw = 16/3 G* a^3, cap 3 pi/16 mu a)")
+    p.add_argument("--cell", choices=("walled", "periodic"), default="walled",
+                   help="the triaxial cell: six frictionless servo plates (walled: in.triax_prep, "
+                   "in.triax) or a periodic box under stress control (periodic: "
+                   "in.triax_prep_periodic, in.triax_periodic; the cited YADE route)")
     p.add_argument("--grid-mu", default="0.5,0.8",
                    help="coarse grid of mu searched first (with --grid-mur); empty: no grid")
     p.add_argument("--grid-mur", default="0.1,0.25", help="coarse grid of mu_r searched first")

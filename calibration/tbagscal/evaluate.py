@@ -4,7 +4,7 @@ import math
 import threading
 from pathlib import Path
 
-from .common import PAPER, PREP_MU_MAX, PREP_MU_START, PREP_SLOPE, fail, fmt
+from .common import PAPER, PREP_MU_MAX, PREP_MU_START, PREP_SLOPE, fail, fmt, twisting_coeffs
 from .runs import Cache, RESTART_FORMAT, deck_hash, run_deck, summary
 
 
@@ -28,6 +28,17 @@ class Calibration:
         same fraction of the Rayleigh step (which falls as 1 / sqrt(E))."""
         return self.a.dt * math.sqrt(min(1.0, PAPER["E"] / E))
 
+    def decks(self):
+        """(preparation deck, shear deck, the files both include) of the --cell chosen."""
+        if self.a.cell == "periodic":
+            return "in.triax_prep_periodic", "in.triax_periodic", ("pcell.inc", "grains.inc", "sample.inc", "gains.inc")
+        return "in.triax_prep", "in.triax", ("cell.inc", "grains.inc", "sample.inc", "gains.inc")
+
+    def deck_key(self, stage):
+        """Hash of the preparation (stage 0) or shear (stage 1) deck with its includes."""
+        decks = self.decks()
+        return deck_hash(decks[stage], *decks[2])
+
     def cell_vars(self, E):
         a = self.a
         return {"W": fmt(a.width), "H": fmt(a.height), "dt": fmt(self.dt(E))}
@@ -42,7 +53,7 @@ class Calibration:
         return "p%s_E%s_e%s_W%s_H%s_seed%d_dt%s_deck%s_r%d" % (
             fmt(p), fmt(E), fmt(a.void_ratio), fmt(a.width), fmt(a.height),
             a.seed if seed is None else seed, fmt(self.dt(E)),
-            deck_hash("in.triax_prep", "cell.inc"), RESTART_FORMAT)
+            self.deck_key(0), RESTART_FORMAT)
 
     def sample(self, p, E, seed=None):
         """Restart file of the sample at sigma3 = p MPa (void ratio within tolerance)."""
@@ -63,7 +74,7 @@ class Calibration:
         mu = PREP_MU_START
         for k in range(6):
             d = self.work / "prep" / key / ("mu%s" % fmt(mu))
-            out, secs = run_deck("in.triax_prep", d, dict(
+            out, secs = run_deck(self.decks()[0], d, dict(
                 self.cell_vars(E), sigma3=fmt(p * 1e6), E=fmt(E), mu_prep=fmt(mu), e0=fmt(target),
                 seed=seed, out="prep.restart"))
             e = summary(d, "prep")["void_ratio"]
@@ -104,9 +115,11 @@ class Calibration:
     def run_key(self, prm, p, seed=None):
         a = self.a
         radius = "" if a.rolling_radius == "effective" else "_rr" + a.rolling_radius
+        radius += "" if a.twisting == "none" else "_tw" + a.twisting
+        radius += "" if a.cell == "walled" else "_" + a.cell
         return "%s_mu%s_mur%s%s_I%s_strain%s_deck%s" % (self.prep_key(p, prm["E"], seed), fmt(prm["mu"]),
                                                         fmt(prm["mur"]), radius, fmt(a.inertial),
-                                                        fmt(a.strain), deck_hash("in.triax", "cell.inc"))
+                                                        fmt(a.strain), self.deck_key(1))
 
     def shear(self, prm, p, seed=None):
         key = self.run_key(prm, p, seed)
@@ -115,11 +128,13 @@ class Calibration:
             return hit
         s = self.sample(p, prm["E"], seed)
         d = self.work / "runs" / key
-        out, secs = run_deck("in.triax", d, dict(
-            self.cell_vars(prm["E"]), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
-            mu=fmt(prm["mu"]), mur=fmt(prm["mur"]), rolling_radius=self.a.rolling_radius,
-            inertial=fmt(self.a.inertial),
-            strain=fmt(self.a.strain), csv="triax.csv"))
+        variables = dict(self.cell_vars(prm["E"]), prep=s["restart"], sigma3=fmt(p * 1e6), E=fmt(prm["E"]),
+                         mu=fmt(prm["mu"]), mur=fmt(prm["mur"]), rolling_radius=self.a.rolling_radius,
+                         inertial=fmt(self.a.inertial), strain=fmt(self.a.strain), csv="triax.csv")
+        if self.a.twisting == "sds":
+            k, c, m = twisting_coeffs(prm["E"], 0.1, prm["mu"], p * 1e6, self.a.void_ratio)
+            variables.update(twisting="sds", ktw=fmt(k), ctw=fmt(c), mutw=fmt(m))
+        out, secs = run_deck(self.decks()[1], d, variables)
         cons, shear = summary(d, "consolidated"), summary(d, "shear")
         rec = {"csv": str(d / "triax.csv"), "seconds": secs,
                "e0": cons["void_ratio"],

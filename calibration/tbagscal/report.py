@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import PAPER, W_VOL, fail
+from .common import PAPER, W_VOL, fail, twisting_coeffs
 from .figure import figure
 from .misfit import mean_curve, read_curve
 
@@ -65,10 +65,21 @@ def write_report(cal, data, rows, out_dir):
                  "data eps_v range), at the data's axial strains, averaged over the pressures.\n"
                  % (a.width * 1e3, a.width * 1e3, a.height * 1e3, a.void_ratio, a.e_tol, a.inertial, a.dt,
                     a.strain * 100, W_VOL))
+        L.append("Cell: %s.\n" % ("periodic, stress-controlled (in.triax_prep_periodic, in.triax_periodic: "
+                                  "fix press/berendsen holds sigma3 on x and y while fix deform shortens z; "
+                                  "stresses from the contact virial)" if a.cell == "periodic" else
+                                  "walled: six frictionless servo plates (in.triax_prep, in.triax)"))
         L.append("Rolling resistance: EPSD with the %s rolling radius (pair_style gran/hertz/rolling "
                  "rolling_radius %s: %s).\n" % (a.rolling_radius, a.rolling_radius,
                                                 "R* = RiRj/(Ri+Rj), the decks' convention" if a.rolling_radius == "effective"
                                                 else "(Ri+Rj)/2, YADE's Rmean: about twice R*"))
+        if a.twisting == "sds":
+            L.append("Twisting resistance: sds with the mean contact's own coefficients at each sigma3 "
+                     "(k_tw = 16/3 G* a^3, cap 3 pi/16 mu a |F_n|, a of the mean contact force "
+                     "pi d^2 sigma3 (1 + e) / 4.5; tbagscal.common.twisting_coeffs), at the start's mu and E: %s.\n" % "; ".join(
+                         "%g MPa: k_tw %.3g N m/rad, c_tw %.3g N m s/rad, mu_tw %.3g m" % (
+                             (p,) + twisting_coeffs(paper["E"], 0.1, paper["mu"], p * 1e6, a.void_ratio))
+                         for p in ps))
         if len(cal.seeds()) > 1:
             L.append("Samples per pressure: %d (seeds %s). Each misfit is that of the samples' mean curve; "
                      "a peak ratio is the samples' mean +- their standard deviation.\n"
@@ -77,7 +88,7 @@ def write_report(cal, data, rows, out_dir):
             if data[p][2]:
                 L.append("- %s\n" % data[p][2])
         for E in sorted({r["E"] for r in (paper, best)}):
-            L.append("Samples (E = %.3g GPa, N grains as in in.triax_prep): %s.\n" % (E / 1e9, "; ".join(
+            L.append("Samples (E = %.3g GPa, N grains as in grains.inc): %s.\n" % (E / 1e9, "; ".join(
                 "%g MPa%s: void ratio %.4f at mu_prep %.4f (%d preparation%s)" % (
                     p, (" seed %d" % s) if len(cal.seeds()) > 1 else "", pr["e"], pr["mu_prep"],
                     len(pr["tries"]), "s" if len(pr["tries"]) > 1 else "")

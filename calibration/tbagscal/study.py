@@ -80,7 +80,7 @@ def probe_limits(cal, pressures, pool, E):
         if hit:
             return hit["e"]
         d = cal.work / "limits" / key
-        run_deck("in.triax_prep", d, dict(cal.cell_vars(E), sigma3=fmt(p * 1e6), E=fmt(E),
+        run_deck(cal.decks()[0], d, dict(cal.cell_vars(E), sigma3=fmt(p * 1e6), E=fmt(E),
                                           mu_prep=fmt(mu), e0=fmt(cal.a.void_ratio), seed=cal.a.seed,
                                           out="prep.restart"))
         e = summary(d, "prep")["void_ratio"]

@@ -72,6 +72,36 @@ def test_lateral_walls_hold_the_confining_stress_while_the_axial_walls_move(cell
     assert "inertial number 5.000e-04" in out
 
 
+@pytest.fixture(scope="module")
+def pcell(tmp_path_factory):
+    """The tiny sample in the periodic cell, consolidated at 0.2 MPa and sheared to 3 %."""
+    d = tmp_path_factory.mktemp("pcell")
+    common = dict(TINY, tbags=lmprun.ROOT, sigma3=SIGMA3)
+    prep = lmprun.run(CAL / "in.triax_prep_periodic", d, variables=dict(common, mu_prep=0.15, out="p.restart")).check()
+    res = lmprun.run(CAL / "in.triax_periodic", d, variables=dict(common, prep="p.restart", strain=0.03)).check()
+    return d, prep.output + res.output
+
+
+def test_periodic_cell_holds_the_confining_stress_while_it_shortens(pcell):
+    """in.triax_prep_periodic consolidates to sigma3 in x, y, z (0.5 %); while in.triax_periodic
+    shortens the box, its lateral servo holds sigma3 within 1 % on average and 2 % at every
+    output, as the walled cell's plates (a press/berendsen barostat lagged by 110 % here, the
+    servo without its integral term by 1.3 % on average)."""
+    d, out = pcell
+    prep = json.loads((d / "prep.json").read_text())
+    assert all(abs(s / SIGMA3 - 1) < 0.01 for s in prep["stresses_Pa"]), prep
+    assert "converged 1" in [l for l in out.splitlines() if l.startswith("PREP:")][0]
+    a = np.loadtxt(d / "triax.csv", delimiter=",", comments="#", skiprows=1)
+    lateral = a[1:, 6:8] / SIGMA3 - 1              # sx sy, every 0.1 % of axial strain
+    print("periodic cell: lateral stress error max %.3f %%, mean %.3f %%; axial strain %.2f %%, ratio %.3f, "
+          "void ratio %.4f" % (100 * np.abs(lateral).max(), 100 * np.abs(lateral).mean(), a[-1, 0],
+                               a[:, 3].max(), prep["void_ratio"]))
+    assert a[-1, 0] > 2.9 and a[:, 3].max() > 1.3
+    assert np.abs(lateral).mean() < 0.01
+    assert np.abs(lateral).max() < 0.02
+    assert "periodic cell" in out and "inertial number 5.000e-04" in out
+
+
 def test_misfit_is_zero_on_the_data_itself():
     fit = load_fit()
     data = fit.load_data(CAL / "data", [0.5])[0.5][1]
@@ -108,9 +138,10 @@ def test_fit_runs_end_to_end_on_a_tiny_sample(tmp_path):
     assert again.returncode == 0 and "run mu" not in again.stdout and "sample" not in again.stdout
 
 
-def test_rolling_radius_reaches_the_deck_and_the_report(tmp_path):
-    """--rolling-radius mean: in.triax runs pair_style ... rolling_radius mean (its log says so),
-    the report states the convention, and the run is not the cache's effective-radius run."""
+def test_conventions_reach_the_deck_and_the_report(tmp_path):
+    """--rolling-radius mean (and --twisting sds): in.triax runs pair_style ... rolling_radius mean
+    (twisting sds; its log says so), the report states the convention, and the run is not the
+    cache's effective-radius run."""
     args = TINY_ARGS + ["--pressures", "0.2", "--budget", "1", "--mu", "0.5", "--mur", "0.1", "--no-figure"]
     eff = run_fit(args, tmp_path)
     assert eff.returncode == 0, eff.stdout[-2000:] + eff.stderr[-2000:]
@@ -123,6 +154,31 @@ def test_rolling_radius_reaches_the_deck_and_the_report(tmp_path):
     assert "with the mean rolling radius" in (tmp_path / "report" / "report.md").read_text()
     bad = run_fit(args + ["--rolling-radius", "twice"], tmp_path)
     assert bad.returncode != 0 and "--rolling-radius" in bad.stderr
+    # --twisting sds: the deck's pair style twists (its log), with the coefficients the report gives
+    tw = run_fit(args + ["--twisting", "sds"], tmp_path)
+    assert tw.returncode == 0, tw.stdout[-2000:] + tw.stderr[-2000:]
+    assert "run mu 0.5 mur 0.1" in tw.stdout
+    runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
+    logs = [(Path(r["csv"]).parent / "in.triax.out").read_text() for r in runs.values()]
+    assert sorted("; twisting sds" in t for t in logs) == [False, False, True]
+    report = (tmp_path / "report" / "report.md").read_text()
+    assert "Twisting resistance: sds" in report and "0.2 MPa: k_tw" in report
+
+
+def test_periodic_cell_reaches_the_fit_and_the_report(tmp_path):
+    """--cell periodic: fit.py prepares and shears with the periodic decks (their logs say so),
+    the report names the cell, and the walled runs' cache is not served for it."""
+    args = ["--width", "0.025", "--height", "0.05", "--void-ratio", "0.6", "--e-tol", "0.05",
+            "--strain", "0.02", "--jobs", "1", "--pressures", "0.2", "--budget", "1", "--no-figure"]
+    res = run_fit(args + ["--cell", "periodic"], tmp_path)
+    assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-2000:]
+    runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
+    assert len(runs) == 1 and all("_periodic_" in k for k in runs)
+    log = (Path(list(runs.values())[0]["csv"]).parent / "in.triax_periodic.out").read_text()
+    assert "periodic cell" in log
+    assert "Cell: periodic, stress-controlled" in (tmp_path / "report" / "report.md").read_text()
+    bad = run_fit(args + ["--cell", "cylinder"], tmp_path)
+    assert bad.returncode != 0 and "--cell" in bad.stderr
 
 
 def test_mean_curve_of_samples():
