@@ -51,7 +51,7 @@ def parse_args(argv):
     p.add_argument("--twisting", choices=("none", "sds"), default="none",
                    help="twisting resistance (pair_style gran/hertz/rolling twisting): none (the "
                    "decks') or sds with the mean contact's own coefficients at each sigma3 "
-                   "(tbagscal.common.twisting_coeffs: k_tw = 16/3 G* a^3, cap 3 pi/16 mu a)")
+                   "(tbagscal.common.twisting_coeffs: k_tw = 16/3 (G/2) a^3, cap 3 pi/16 mu a)")
     p.add_argument("--cell", choices=("walled", "periodic"), default="walled",
                    help="the triaxial cell: six frictionless servo plates (walled: in.triax_prep, "
                    "in.triax) or a periodic box under stress control (periodic: "

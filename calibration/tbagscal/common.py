@@ -31,17 +31,19 @@ def twisting_coeffs(E, nu, mu, sigma3, void_ratio):
     """twisting sds coefficients (k_tw, c_tw, mu_tw) of the mean contact of a sample of equal
     grains of D_MEAN at the isotropic stress sigma3 (Pa): the mean contact force
     F = pi d^2 sigma3 (1 + e) / Z (from sigma = Z phi F / (pi d^2), phi = 1/(1+e)), its Hertz contact
-    radius a, then the contact's own torsional stiffness k_tw = 16/3 G* a^3 (Mindlin), the full-slip
+    radius a, then the contact's own torsional stiffness k_tw = 16/3 G' a^3 (a circular contact without
+    slip twisted on a half-space has 16/3 G a^3, Lubkin; two equal grains in series: G' = G/2; torsion
+    is antiplane shear, so no (2 - nu) as in the tangential G*), the full-slip
     torque of a Hertz contact mu_tw F = 3 pi/16 mu a F (Lubkin), and the dashpot that gives the
     normal contact's damping ratio (restitution 0.2) on the pair's twisting inertia (I/2, I = 0.4 m r^2)."""
     d = D_MEAN
     F = math.pi * d * d * sigma3 * (1.0 + void_ratio) / COORDINATION
     Rs = d / 4.0
     Es = E / (2.0 * (1.0 - nu * nu))
-    Gs = E / (4.0 * (2.0 - nu) * (1.0 + nu))
+    Gt = E / (4.0 * (1.0 + nu))            # G/2: the two grains' shear moduli in series
     delta = (F / (4.0 / 3.0 * Es * math.sqrt(Rs))) ** (2.0 / 3.0)
     a = math.sqrt(Rs * delta)
-    k = 16.0 / 3.0 * Gs * a ** 3
+    k = 16.0 / 3.0 * Gt * a ** 3
     inertia = 0.5 * 0.4 * (RHO * math.pi * d ** 3 / 6.0) * (d / 2.0) ** 2
     lr = math.log(RESTITUTION)
     beta = -lr / math.sqrt(lr * lr + math.pi * math.pi)

@@ -75,7 +75,7 @@ def write_report(cal, data, rows, out_dir):
                                                 else "(Ri+Rj)/2, YADE's Rmean: about twice R*"))
         if a.twisting == "sds":
             L.append("Twisting resistance: sds with the mean contact's own coefficients at each sigma3 "
-                     "(k_tw = 16/3 G* a^3, cap 3 pi/16 mu a |F_n|, a of the mean contact force "
+                     "(k_tw = 16/3 (G/2) a^3, cap 3 pi/16 mu a |F_n|, a of the mean contact force "
                      "pi d^2 sigma3 (1 + e) / 4.5; tbagscal.common.twisting_coeffs), at the start's mu and E: %s.\n" % "; ".join(
                          "%g MPa: k_tw %.3g N m/rad, c_tw %.3g N m s/rad, mu_tw %.3g m" % (
                              (p,) + twisting_coeffs(paper["E"], 0.1, paper["mu"], p * 1e6, a.void_ratio))
