@@ -22,6 +22,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from tbagscal.bracket import write_bracket  # noqa: E402
 from tbagscal.common import HERE, PAPER, RANGES, FitError  # noqa: E402
 from tbagscal.evaluate import Calibration  # noqa: E402
 from tbagscal.misfit import load_data, misfit_one  # noqa: E402,F401 (misfit_one: for the tests)
@@ -56,6 +57,9 @@ def parse_args(argv):
                    help="the triaxial cell: six frictionless servo plates (walled: in.triax_prep, "
                    "in.triax) or a periodic box under stress control (periodic: "
                    "in.triax_prep_periodic, in.triax_periodic; the cited YADE route)")
+    p.add_argument("--bracket", default="",
+                   help="comma separated report directories of fit.py --budget 1 runs, one per "
+                   "reading of the conventions: tabulate them (OUT/bracket.md) and run nothing")
     p.add_argument("--grid-mu", default="0.5,0.8",
                    help="coarse grid of mu searched first (with --grid-mur); empty: no grid")
     p.add_argument("--grid-mur", default="0.1,0.25", help="coarse grid of mu_r searched first")
@@ -149,8 +153,12 @@ def main(argv):
               % (Path(a.out) / SAND_INCLUDE, best["mu"], best["mur"], best["E"], best["n"]))
         return 0
     try:
-        lmp_command()
+        if not a.bracket:
+            lmp_command()
         data = load_data(a.data, a.pressures)
+        if a.bracket:
+            print(write_bracket([d for d in a.bracket.split(",") if d], data, Path(a.out) / "bracket.md"), end="")
+            return 0
         cal = Calibration(a)
         if a.study:
             run_study(cal, data, a.out)

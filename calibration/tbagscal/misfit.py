@@ -76,6 +76,11 @@ def mean_curve(curves):
             for n in curves[0]}
 
 
+def sd(values):
+    """The samples' standard deviation (0 for one sample)."""
+    return float(np.std(values, ddof=1)) if len(values) > 1 else 0.0
+
+
 def summarise(prm, runs, data):
     """One row of the evaluations' table: the misfit of the seeds' mean curve at each pressure,
     the seeds' mean peak ratio and its standard deviation, the samples' void ratio and the walls' errors."""
@@ -92,11 +97,16 @@ def summarise(prm, runs, data):
         lat_err = np.concatenate([np.abs(np.column_stack([e[n] for n in names])[1:] / (p * 1e6) - 1).ravel()
                                   for e in each])
         peaks = np.array([e["ratio"].max() for e in each])
+        # each sample's largest contraction and eps_v at 10 % axial strain (the bracket's measures)
+        contraction = np.array([e["eps_v_pct"].max() for e in each])
+        ev10 = np.array([np.interp(10.0, e["eps_a_pct"], e["eps_v_pct"], right=np.nan) for e in each])
         row.update({
             "J_%g" % p: j, "Jratio_%g" % p: jr, "Jvol_%g" % p: jv,
             "peak_sim_%g" % p: float(peaks.mean()),
-            "peak_sd_%g" % p: float(peaks.std(ddof=1)) if len(peaks) > 1 else 0.0,
+            "peak_sd_%g" % p: sd(peaks),
             "peak_data_%g" % p: float(data[p][1][:, 1].max()),
+            "contraction_%g" % p: float(contraction.mean()), "contraction_sd_%g" % p: sd(contraction),
+            "ev10_%g" % p: float(ev10.mean()), "ev10_sd_%g" % p: sd(ev10),
             "contract_dilate_%g" % p: bool(ev[kmax] > 0 and ev[-1] < ev[kmax] - 0.1),
             "e0_%g" % p: float(np.mean([r["e0"] for r in recs])),
             "I_%g" % p: float(np.mean([r["inertial"] for r in recs])),

@@ -1,6 +1,7 @@
 """The calibration's report (report.md, runs.csv, curve CSVs) and the sand include for the decks."""
 import contextlib
 import csv
+import json
 import shutil
 import sys
 import tempfile
@@ -38,8 +39,13 @@ def write_report(cal, data, rows, out_dir):
         ps = a.pressures
         cols = ["n", "mu", "mur", "E", "J"] + [c % p for p in ps for c in
                                                 ("J_%g", "Jratio_%g", "Jvol_%g", "peak_sim_%g", "peak_sd_%g", "peak_data_%g",
+                                                 "contraction_%g", "contraction_sd_%g", "ev10_%g", "ev10_sd_%g",
                                                  "contract_dilate_%g", "e0_%g", "I_%g", "wallerr_%g", "shearwall_mean_%g",
                                                  "shearwall_max_%g", "Z_end_%g", "seconds_%g")]
+        (tmp / "options.json").write_text(json.dumps({
+            "rolling_radius": a.rolling_radius, "twisting": a.twisting, "cell": a.cell,
+            "seeds": cal.seeds(), "inertial": a.inertial, "strain": a.strain, "void_ratio": a.void_ratio,
+            "width": a.width, "height": a.height, "pressures": ps}, indent=1) + "\n")
         with open(tmp / "runs.csv", "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(cols)

@@ -4,6 +4,7 @@ wall, the misfit is zero on the data itself, fit.py runs end to end on a tiny sa
 
 Tiny sample: a 25 x 25 x 50 mm cell (260 grains of the ten sand sizes); its walls loosen the
 packing, so it is prepared at void ratio 0.80 +/- 0.03 rather than the 0.68 of the real cell."""
+import csv
 import importlib.util
 import json
 import os
@@ -179,6 +180,29 @@ def test_periodic_cell_reaches_the_fit_and_the_report(tmp_path):
     assert "Cell: periodic, stress-controlled" in (tmp_path / "report" / "report.md").read_text()
     bad = run_fit(args + ["--cell", "cylinder"], tmp_path)
     assert bad.returncode != 0 and "--cell" in bad.stderr
+
+
+def test_bracket_tabulates_the_readings(tmp_path):
+    """--bracket R1,R2: one row per reading (named from each report's options.json) with the
+    numbers of its runs.csv; a directory without a report is refused by name, and nothing runs."""
+    args = TINY_ARGS + ["--pressures", "0.2", "--budget", "1", "--no-figure"]
+    for out, extra in (("r1", []), ("r2", ["--rolling-radius", "mean"])):
+        res = run_fit(args + extra + ["--out", str(tmp_path / out)], tmp_path)
+        assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-2000:]
+    res = run_fit(["--pressures", "0.2", "--bracket", "%s,%s" % (tmp_path / "r1", tmp_path / "r2"),
+                   "--out", str(tmp_path / "b")], tmp_path, env={"TBAGS_LMP": ""})
+    assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-2000:]
+    table = (tmp_path / "b" / "bracket.md").read_text()
+    rows = [l for l in table.splitlines() if l.startswith("| effective") or l.startswith("| mean")]
+    assert [r.split(" |")[0] for r in rows] == ["| effective radius, twisting none, walled cell",
+                                                "| mean radius, twisting none, walled cell"]
+    for out, row in zip(("r1", "r2"), rows):
+        with open(tmp_path / out / "runs.csv", newline="") as fh:
+            first = next(csv.DictReader(fh))
+        assert "%.2f" % float(first["peak_sim_0.2"]) == row.split(" | ")[3]
+        assert "%.2f" % float(first["contraction_0.2"]) == row.split(" | ")[5]
+    bad = run_fit(["--pressures", "0.2", "--bracket", str(tmp_path / "nowhere")], tmp_path)
+    assert bad.returncode != 0 and "nowhere" in bad.stderr and "--budget 1" in bad.stderr
 
 
 def test_mean_curve_of_samples():
