@@ -41,7 +41,8 @@ def write_bracket(dirs, data, out_path):
             fail("--bracket: runs.csv has no column %s (made by an older fit.py: rerun it with the "
                  "same --workdir, every run is cached)" % (key % p))
         m, s = float(m), float(s)
-        return (fmt_ % m) + ((" +- " + fmt_ % s) if s > 0 else "")
+        # a spread below the mean's last digit gets one more digit (not "+- 0.00")
+        return (fmt_ % m) + ((" +- " + (fmt_ if s >= 0.005 else "%.3f") % s) if s > 0 else "")
 
     L = ["| reading | seeds | J | peak ratio %s (data %s) | phi at peak, deg (data %s) | largest contraction %% (data %s) "
          "| eps_v at 10 %% axial, %% (data %s; - dilation) |" % (
