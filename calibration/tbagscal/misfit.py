@@ -85,12 +85,13 @@ def summarise(prm, runs, data):
     """One row of the evaluations' table: the misfit of the seeds' mean curve at each pressure,
     the seeds' mean peak ratio and its standard deviation, the samples' void ratio and the walls' errors."""
     row = dict(prm)
-    tot = []
+    tot, per_seed = [], []
     for p, recs in runs.items():
         each = [read_curve(rec["csv"]) for rec in recs]
         c = mean_curve(each)
         j, jr, jv = misfit_one(c, data[p][1])
         tot.append(j)
+        per_seed.append([misfit_one(e, data[p][1])[0] for e in each])
         ev = c["eps_v_pct"]
         kmax = int(np.argmax(ev))
         names = ("sxlo_Pa", "sxhi_Pa", "sylo_Pa", "syhi_Pa")
@@ -115,4 +116,6 @@ def summarise(prm, runs, data):
             "shearwall_max_%g" % p: float(lat_err.max()), "shearwall_mean_%g" % p: float(lat_err.mean()),
             "Z_end_%g" % p: float(c["Z"][-1])})
     row["J"] = float(np.mean(tot))
+    # the misfit's sample noise: the spread of each sample's own misfit (averaged over the pressures)
+    row["J_sd"] = sd(np.mean(np.array(per_seed), axis=0))
     return row

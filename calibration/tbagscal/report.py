@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .common import PAPER, W_VOL, fail, twisting_coeffs
+from .confidence import region
 from .figure import figure
 from .misfit import mean_curve, read_curve
 
@@ -37,7 +38,7 @@ def write_report(cal, data, rows, out_dir):
         paper = rows[0]
         best = min(rows, key=lambda r: r["J"])
         ps = a.pressures
-        cols = ["n", "mu", "mur", "E", "J"] + [c % p for p in ps for c in
+        cols = ["n", "mu", "mur", "E", "J", "J_sd"] + [c % p for p in ps for c in
                                                 ("J_%g", "Jratio_%g", "Jvol_%g", "peak_sim_%g", "peak_sd_%g", "peak_data_%g",
                                                  "contraction_%g", "contraction_sd_%g", "ev10_%g", "ev10_sd_%g",
                                                  "contract_dilate_%g", "e0_%g", "I_%g", "wallerr_%g", "shearwall_mean_%g",
@@ -113,6 +114,15 @@ def write_report(cal, data, rows, out_dir):
                     r["peak_data_%g" % p], 100 * (r["peak_sim_%g" % p] / r["peak_data_%g" % p] - 1))
                            for p in ps),
                 ", ".join("yes" if r["contract_dilate_%g" % p] else "no" for p in ps)))
+        # the fit's confidence region and cost
+        reg = region(rows, a.fit, best.get("J_sd", 0.0))
+        L.append("\nConfidence region of the best set (J <= J_best + %.4f, the samples' spread of their own "
+                 "misfits there; a quadratic through the evaluations near it, tbagscal/confidence.py): %s.\n" % (
+                     best.get("J_sd", 0.0), reg if isinstance(reg, str) else ", ".join(
+                         ("E %.3g to %.3g GPa" % (lo / 1e9, hi / 1e9)) if k == "E" else "%s %.3g to %.3g" % (
+                             "mu_r" if k == "mur" else k, lo, hi) for k, (lo, hi) in reg.items())))
+        L.append("Cost: %d evaluations, %.2f core-hours of triaxial runs (the samples' preparations besides).\n"
+                 % (len(rows), sum(r["seconds_%g" % p] for r in rows for p in ps) / 3600.0))
         L.append("\n## All evaluations\n")
         L.append("| n | mu | mu_r | E (GPa) | J | " + " | ".join("J %g (ratio, vol)" % p for p in ps)
                  + " | void ratio | wall error: consolidated; shearing mean, max | I | run time (s) |")
