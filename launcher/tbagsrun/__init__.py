@@ -15,9 +15,17 @@ liggghts_stage.py  a shear run in LIGGGHTS (--engine liggghts), written as in.sh
 cli.py      `python3 -m tbagsrun shear ...` (__main__.py), what `./tbags shear` runs: arguments,
             set-up, then shear.py
 """
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+POSTPROCESS = ROOT / "postprocess"
+
+
+def use_postprocess():
+    """Put postprocess/ (tbagspost) on the import path, once."""
+    if str(POSTPROCESS) not in sys.path:
+        sys.path.insert(0, str(POSTPROCESS))
 
 
 class LaunchError(Exception):

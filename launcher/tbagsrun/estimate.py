@@ -3,10 +3,9 @@ bag, projected over the whole run and over rank counts (postprocess/tbagspost: p
 """
 import os
 import shutil
-import sys
 from pathlib import Path
 
-from . import ROOT, LaunchError, resume
+from . import LaunchError, resume, use_postprocess
 from .presets import DECOMPOSITIONS, ESTIMATE
 from .stages import made_part, run_module, stage, stage_once
 
@@ -20,7 +19,7 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
     at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
     scaling model); then the projection (tbagspost/project_time.py). reuse: an earlier projection
     is said again instead of timing anew."""
-    sys.path.insert(0, str(ROOT / "postprocess"))
+    use_postprocess()
     from tbagspost.run import log_timestep    # the decks' TIMESTEP line (numpy: after set-up)
     counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
     folder = Path(out) / "estimate"

@@ -7,12 +7,11 @@ resumed deck appends to the run's CSV, after rows the interrupted run may have w
 checkpoint: merge_rows() keeps, for every stretch of time, the rows written last.
 """
 import re
-import sys
 from pathlib import Path
 
-from . import ROOT
+from . import use_postprocess
 
-sys.path.insert(0, str(ROOT / "postprocess"))
+use_postprocess()
 from tbagspost import superseded  # noqa: E402  (the rule the CSV readers apply too)
 
 FINISHED = {"shear": "SHEARED:", "cyclic": "CYCLED:"}    # the deck's last summary line
