@@ -1,5 +1,6 @@
 """A preset's shear run in LIGGGHTS (./tbags shear --engine liggghts): inputs/liggghts/in.shear on
 the run's LAMMPS fill, its outputs written as in.shear's CSV."""
+import re
 import subprocess
 from pathlib import Path
 
@@ -7,10 +8,32 @@ from . import ROOT, LaunchError, lammps
 from .stages import report, run_python
 
 
+SAND_CALIBRATED = ROOT / "calibration" / "results" / "sand_calibrated.lmp"
+SAND_NAMES = ("sand_E", "sand_nu", "sand_mu", "sand_mur")
+
+
+def sand_variables(variables, path=SAND_CALIBRATED):
+    """-var sand's parameters as variables of the LIGGGHTS deck, which has no sand.lmp: none for
+    paper (model.lig's defaults are the paper's), those of calibration/results/sand_calibrated.lmp
+    (the file inputs/sand.lmp reads) for calibrated."""
+    name = variables.get("sand", "paper")
+    if name == "paper":
+        return {}
+    if name != "calibrated":
+        raise LaunchError("-var sand %s: the sand set must be paper or calibrated" % name)
+    text = Path(path).read_text() if Path(path).is_file() else ""
+    found = dict(re.findall(r"^variable\s+(sand_\w+)\s+equal\s+(\S+)\s*$", text, re.M))
+    missing = [n for n in SAND_NAMES if n not in found]
+    if missing:
+        raise LaunchError("-var sand calibrated: %s has no %s (rewrite it: ./tbags calibrate "
+                          "--sand-include)" % (path, ", ".join(missing)))
+    return {n: found[n] for n in SAND_NAMES}
+
+
 def stage_liggghts(folder, ranks, variables, say):
     """inputs/liggghts/in.shear in folder: the run's LAMMPS fill converted (tbagspost/liggghts_fill.py), then
-    LIGGGHTS on `ranks` ranks (split across x, through the bag), then shear.csv (in.shear's
-    columns) from its means and per-step trace (deleted unless -var trace 1); stops if it
+    LIGGGHTS on `ranks` ranks (split across x, through the bag) with -var sand's parameters,
+    then shear.csv (in.shear's columns) from its means and per-step trace (deleted unless -var trace 1); stops if it
     fails."""
     folder = Path(folder)
     say("tbags shear: shear (LIGGGHTS) in %s ..." % folder)
@@ -20,7 +43,8 @@ def stage_liggghts(folder, ranks, variables, say):
     if not ok:
         raise LaunchError("%s\nshear: could not convert the fill for LIGGGHTS" % err.strip())
     res = lammps.run(ROOT / "inputs" / "liggghts" / "in.shear", folder, ranks,
-                     dict(variables, fill="fill.liggghts.data", procs="%d 1 1" % ranks),
+                     dict(variables, fill="fill.liggghts.data", procs="%d 1 1" % ranks,
+                          **sand_variables(variables)),
                      log="log.shear", screen="screen.shear.txt", engine="liggghts")
     report(res, "the LIGGGHTS shear", folder / "log.shear", say)
     means_to_csv(folder / "shear.means.txt", folder / "shear.csv", folder / "shear.start.txt",
