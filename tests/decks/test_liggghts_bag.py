@@ -90,6 +90,29 @@ def test_fabric_in_liggghts(tiny_filled, tmp_path, fabric):
         res.check("liggghts")
         log = (tmp_path / "log.lammps").read_text().splitlines()
         coeff = [l for l in log if l.lstrip().startswith("bond_coeff") and "YARN_PP_TAPE" in l]
-        assert coeff and coeff[-1].rstrip().endswith("r0 0.005 shear 0"), coeff    # (echoed, substituted)
+        assert coeff and coeff[-1].rstrip().endswith("r0 0.005 shear 0 E -1"), coeff    # (echoed, substituted)
     else:
         assert res.returncode != 0 and "woven: run LAMMPS" in res.output
+
+
+def test_bag_rolling_and_bending_modulus_in_both_engines(runs, tiny_filled, tmp_path):
+    """-var bag_mur and -var yarn_bendE reach model.lig as they reach fabric.lmp: the same run
+    with both changed agrees between the engines to round-off, and differs from the default
+    run (the values acted; before, LIGGGHTS ignored both and kept 0.05 and the rod's modulus)."""
+    fill = tiny_filled / "fill.data"
+    ztop = top_plate(fill)
+    v = {"bag_mur": 0, "yarn_bendE": 1e9}
+    (tmp_path / "lammps").mkdir()
+    (tmp_path / "lammps" / "fill.data").write_bytes(fill.read_bytes())
+    lmprun.run(bag_deck_lammps(ztop, STEPS, FIELDS), tmp_path / "lammps", variables=v).check()
+    (tmp_path / "liggghts").mkdir()
+    convert(fill, tmp_path / "liggghts" / "fill.liggghts.data")
+    res = lmprun.run(bag_deck_liggghts(ztop, STEPS, FIELDS), tmp_path / "liggghts", engine="liggghts",
+                     variables=dict(v, procs="1 1 1"))
+    res.check("liggghts")
+    assert "bending modulus 1000000000.0 Pa" in res.output and "bag rolling 0\n" in res.output
+    lmp, lig = last_dump(tmp_path / "lammps" / "end.dump"), last_dump(tmp_path / "liggghts" / "end.dump")
+    for cols in (("fx", "fy", "fz"), ("tqx", "tqy", "tqz")):
+        d, moved = diff(lig, lmp, cols), diff(lmp, runs["lammps"], cols)
+        print("bag_mur 0, yarn_bendE 1e9, %s: LIGGGHTS vs LAMMPS %.2e; against the defaults %.2e" % (cols[0], d, moved))
+        assert d < 1e-8 and moved > 1e-4

@@ -122,7 +122,7 @@ def top_plate(fill):
 
 
 # the plates' steel with sandpaper, as inputs/between_plates.lmp
-PLATE = ("material 200e9 0.1 coeff 1 friction 1e10 rolling 0.05 restitution 0.2 "
+PLATE = ("material 200e9 0.1 coeff 1 friction 1e10 rolling ${fabric_mur} restitution 0.2 "
          "coeff 2 friction 1e10 rolling 0.05 restitution 0.2")
 
 
