@@ -204,6 +204,8 @@ def shear(argv):
     out = o.out or ROOT / "runs" / (o.preset.folder + ("-liggghts" if o.engine == "liggghts" else ""))
     stages.PROGRESS_EVERY = o.progress_every
     variables.check(o.preset, o.variables)    # every value, before anything is made
+    if o.engine == "liggghts":
+        variables.check_liggghts(o.variables)
     fabrics = () if "fabric" in o.variables else o.preset.fabrics
     for where, user in ([(out / f, dict(o.variables, fabric=f)) for f in fabrics] or [(out, o.variables)]):
         decide(o.preset, where, user, o.nreal, o.seed, o.engine, o.resume, o.overwrite, o.estimate)

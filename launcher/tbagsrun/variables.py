@@ -14,6 +14,7 @@ from . import ROOT, LaunchError
 
 INPUTS = ROOT / "inputs"
 DECLARED = re.compile(r"^variable\s+(\w+)\s+index\s+(\"[^\"]*\"|\S+)", re.M)
+DECLARED_NAME = re.compile(r"^variable\s+(\w+)\s+index\b", re.M)
 TESTED = re.compile(r"is_defined\(variable,(\w+)\)")
 INCLUDED = re.compile(r"include\s+\$\{tbags\}/inputs/([\w.]+)")
 # the decks' own statement of the plates' stable step (between_plates.lmp's TIMESTEP line)
@@ -141,3 +142,19 @@ def is_number(text):
         return True
     except ValueError:
         return False
+
+
+# -var values the LIGGGHTS shear takes besides its decks' own: the launcher reads them itself
+LIGGGHTS_LAUNCHER = {"trace", "sand"}
+
+
+def check_liggghts(variables):
+    """--engine liggghts: stop on a -var value that only LAMMPS's shear decks take (the LIGGGHTS
+    shear would run without it): a name must be declared by in.bag, in.fill (their stages run in
+    LAMMPS) or the LIGGGHTS decks (inputs/liggghts/in.shear, model.lig), or read by the launcher."""
+    lig = "".join((INPUTS / "liggghts" / f).read_text() for f in ("in.shear", "model.lig"))
+    taken = set(declared(["bag", "fill"])) | set(DECLARED_NAME.findall(lig)) | LIGGGHTS_LAUNCHER
+    for name in variables:
+        if name not in taken:
+            raise LaunchError("shear: -var %s: the LIGGGHTS shear (inputs/liggghts/in.shear) does not take "
+                              "it, only LAMMPS's in.shear does: run without --engine liggghts" % name)

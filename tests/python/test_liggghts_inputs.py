@@ -1,6 +1,8 @@
-"""The LIGGGHTS shear gets -var sand's parameters (its deck has no sand.lmp): none for paper
-(model.lig's defaults), calibration/results/sand_calibrated.lmp's for calibrated, passed to the
-deck's run; a file without them or another set name stops with a message."""
+"""What --engine liggghts does with -var values. The LIGGGHTS shear gets -var sand's parameters
+(its deck has no sand.lmp): none for paper (model.lig's defaults), those of
+calibration/results/sand_calibrated.lmp for calibrated, passed to the deck's run; a file without
+them or another set name stops with a message. A value only LAMMPS's shear decks take stops the
+launcher before anything runs (the LIGGGHTS run would go on without it)."""
 import re
 import sys
 from pathlib import Path
@@ -8,7 +10,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "launcher"))
-from tbagsrun import LaunchError, liggghts_stage  # noqa: E402
+from tbagsrun import LaunchError, liggghts_stage, variables  # noqa: E402
 
 
 def test_paper_and_calibrated_sets(tmp_path):
@@ -50,3 +52,15 @@ def test_the_run_gets_them(tmp_path, monkeypatch):
     with pytest.raises(Done):
         liggghts_stage.stage_liggghts(tmp_path, 1, {"sand": "calibrated"}, print)
     assert seen["sand_mu"] == liggghts_stage.sand_variables({"sand": "calibrated"})["sand_mu"]
+
+
+@pytest.mark.parametrize("name", ["Fv", "damping", "film_mu", "du_dump", "compress_to"])
+def test_values_only_lammps_takes_are_refused(name):
+    with pytest.raises(LaunchError, match="-var %s: the LIGGGHTS shear" % name):
+        variables.check_liggghts({name: "1"})
+
+
+def test_values_the_liggghts_run_takes_pass():
+    variables.check_liggghts({"bag_mur": "0", "yarn_bendE": "1e9", "sand": "calibrated", "v": "0.01",
+                              "ufinal": "0.002", "seed": "5", "nx": "9", "Fpaper": "1960", "trace": "1",
+                              "fabric": "words", "yarn_shear": "0", "dt": "1e-6"})
