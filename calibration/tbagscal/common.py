@@ -21,6 +21,7 @@ RANGES = {
 PREP_MU_MAX = 1.0       # preparation friction searched in [0, PREP_MU_MAX]
 PREP_SLOPE = 0.25       # d e / d mu_prep, first guess (measured on the 50 x 50 x 100 mm sample)
 PREP_MU_START = 0.14
+PREP_TRIES = 8          # preparations per sample before the search gives up
 W_VOL = 0.5             # weight of the volumetric term in the misfit
 RHO, D_MEAN = 2650.0, 0.005
 COORDINATION = 4.5      # contacts per grain of the consolidated samples (measured 4.3-4.7)

@@ -4,7 +4,7 @@ import math
 import threading
 from pathlib import Path
 
-from .common import PAPER, PREP_MU_MAX, PREP_MU_START, PREP_SLOPE, fail, fmt, twisting_coeffs
+from .common import PAPER, PREP_MU_MAX, PREP_MU_START, PREP_SLOPE, PREP_TRIES, fail, fmt, twisting_coeffs
 from .runs import Cache, RESTART_FORMAT, deck_hash, run_deck, summary
 
 
@@ -72,7 +72,7 @@ class Calibration:
         target, tol = a.void_ratio, a.e_tol
         tries = []
         mu = PREP_MU_START
-        for k in range(6):
+        for k in range(PREP_TRIES):
             d = self.work / "prep" / key / ("mu%s" % fmt(mu))
             out, secs = run_deck(self.decks()[0], d, dict(
                 self.cell_vars(E), sigma3=fmt(p * 1e6), E=fmt(E), mu_prep=fmt(mu), e0=fmt(target),
@@ -86,8 +86,17 @@ class Calibration:
                        "seconds": secs}
                 self.prep_cache.put(key, rec)
                 return rec
-            # next guess: secant through the two closest tries, else the default slope
-            if len(tries) >= 2:
+            # next guess: between the closest tries on either side of the target when there are
+            # such (e rises with mu_prep, but with the packing's noise: a secant through two tries
+            # on one side can point the wrong way); else a secant through the two closest tries,
+            # else the default slope
+            below = [t for t in tries if t[1] < target]
+            above = [t for t in tries if t[1] > target]
+            lo = max(below, key=lambda t: t[1]) if below else None
+            hi = min(above, key=lambda t: t[1]) if above else None
+            if lo and hi and lo[0] < hi[0]:
+                slope, base_mu, base_e = (hi[1] - lo[1]) / (hi[0] - lo[0]), lo[0], lo[1]
+            elif len(tries) >= 2:
                 (m1, e1), (m2, e2) = sorted(tries, key=lambda t: abs(t[1] - target))[:2]
                 slope = (e2 - e1) / (m2 - m1) if abs(m2 - m1) > 1e-9 and (e2 - e1) * (m2 - m1) > 0 else PREP_SLOPE
                 base_mu, base_e = m1, e1
@@ -96,11 +105,11 @@ class Calibration:
             nxt = min(PREP_MU_MAX, max(0.0, base_mu + (target - base_e) / slope))
             if any(abs(nxt - m) < 1e-4 for m, _ in tries):
                 edge = [t for t in tries if abs(t[0] - nxt) < 1e-4][0]
-                if nxt <= 0.0:
+                if nxt <= 0.0 and edge[1] > target:
                     fail("--void-ratio %g: the sample cannot reach this void ratio at %g MPa: even "
                          "frictionless preparation (mu_prep = 0) gives e = %.4f (too dense a target "
                          "for these sizes)" % (target, p, edge[1]))
-                if nxt >= PREP_MU_MAX:
+                if nxt >= PREP_MU_MAX and edge[1] < target:
                     fail("--void-ratio %g: the sample cannot reach this void ratio at %g MPa: the "
                          "loosest preparation (mu_prep = %g) gives e = %.4f (too loose a target)"
                          % (target, p, PREP_MU_MAX, edge[1]))
