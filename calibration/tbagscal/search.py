@@ -1,10 +1,10 @@
 """The search over mu, mu_r (and E): a grid, then Nelder-Mead from its best points, within a budget."""
 import concurrent.futures as cf
-import math
 
 import numpy as np
 
 from .common import BudgetSpent, RANGES, fmt
+from .confidence import SCALE, to_x
 from .misfit import summarise
 
 
@@ -45,12 +45,9 @@ def search(cal, data):
             from scipy.optimize import minimize
             best = min(rows, key=lambda r: r["J"])
             names = a.fit
-            # unit steps: 0.1 in mu, 0.05 in mu_r, a factor 10^0.15 = 1.41 in E (searched in log10 E:
-            # the grain stiffness matters by its ratio)
-            scale = {"mu": 0.1, "mur": 0.05, "E": 0.15}
-
-            def to_x(n, v):
-                return math.log10(v) / scale[n] if n == "E" else v / scale[n]
+            # unit steps (confidence.SCALE): 0.1 in mu, 0.05 in mu_r, a factor 10^0.15 = 1.41 in E
+            # (searched in log10 E: the grain stiffness matters by its ratio)
+            scale = SCALE
 
             def from_x(n, x):
                 return float("%.3g" % 10 ** (x * scale[n])) if n == "E" else round(x * scale[n], 4)
