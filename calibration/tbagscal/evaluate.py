@@ -96,13 +96,25 @@ class Calibration:
             hi = min(above, key=lambda t: t[1]) if above else None
             if lo and hi and lo[0] < hi[0]:
                 slope, base_mu, base_e = (hi[1] - lo[1]) / (hi[0] - lo[0]), lo[0], lo[1]
-            elif len(tries) >= 2:
-                (m1, e1), (m2, e2) = sorted(tries, key=lambda t: abs(t[1] - target))[:2]
-                slope = (e2 - e1) / (m2 - m1) if abs(m2 - m1) > 1e-9 and (e2 - e1) * (m2 - m1) > 0 else PREP_SLOPE
-                base_mu, base_e = m1, e1
             else:
-                slope, base_mu, base_e = PREP_SLOPE, mu, e
+                # every try on one side: step on from the try furthest the way to go (the lowest
+                # mu_prep when all are too loose), by a secant's slope where two tries give a
+                # positive one, else the default
+                slope = PREP_SLOPE
+                if len(tries) >= 2:
+                    (m1, e1), (m2, e2) = sorted(tries, key=lambda t: abs(t[1] - target))[:2]
+                    if abs(m2 - m1) > 1e-9 and (e2 - e1) * (m2 - m1) > 0:
+                        slope = (e2 - e1) / (m2 - m1)
+                if not below:       # all too loose: on from the lowest friction tried
+                    base_mu, base_e = min(tries)
+                elif not above:     # all too dense: on from the highest
+                    base_mu, base_e = max(tries)
+                else:               # a bracket the noise turned round: from the closest
+                    base_mu, base_e = min(tries, key=lambda t: abs(t[1] - target))
             nxt = min(PREP_MU_MAX, max(0.0, base_mu + (target - base_e) / slope))
+            if any(abs(nxt - m) < 1e-4 for m, _ in tries) and 0.0 < nxt < PREP_MU_MAX:
+                # a friction tried already (the packing's noise): 0.02 further the way to go
+                nxt = min(PREP_MU_MAX, max(0.0, nxt + (0.02 if target > base_e else -0.02)))
             if any(abs(nxt - m) < 1e-4 for m, _ in tries):
                 edge = [t for t in tries if abs(t[0] - nxt) < 1e-4][0]
                 if nxt <= 0.0 and edge[1] > target:
