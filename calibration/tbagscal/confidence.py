@@ -44,9 +44,10 @@ def region(rows, names, dJ):
     if np.any(np.linalg.eigvalsh(H) <= 0):
         return "the misfit is not convex around the best set (a flat or descending direction): no bounded region"
     g = coef[1:1 + n]
-    centre = xb - np.linalg.solve(H, g)                    # the quadratic's own minimum
-    jmin = coef[0] - 0.5 * g @ np.linalg.solve(H, g)
     Hinv = np.linalg.inv(H)
+    step = Hinv @ g
+    centre = xb - step                                     # the quadratic's own minimum
+    jmin = coef[0] - 0.5 * g @ step
     out = {}
     for i, name in enumerate(names):
         half = math.sqrt(2.0 * (dJ + max(0.0, best["J"] - jmin)) * Hinv[i, i])

@@ -18,7 +18,7 @@ import numpy as np
 
 from .common import PAPER, PREP_MU_MAX, FitError, fmt
 from .evaluate import Calibration
-from .misfit import misfit_one, read_curve
+from .misfit import misfit_one, read_curve, sd
 from .report import published, read_runs
 from .runs import run_deck, summary
 
@@ -177,7 +177,7 @@ def write_study(base, data, best, todo, limits, out_dir, seconds):
             continue
         def ms(k):
             v = np.array([r[k] for r in s])
-            return "%.3f +- %.3f [%.3f, %.3f]" % (v.mean(), v.std(ddof=1) if len(v) > 1 else 0.0,
+            return "%.3f +- %.3f [%.3f, %.3f]" % (v.mean(), sd(v),
                                                  v.min(), v.max())
         L.append("| %g | %s | %s | %s | %s | %.2f, %.2f |" % (p, ms("peak"), ms("contraction"), ms("ev_10"),
                                                          ms("J"), meas[p]["peak"], meas[p]["contraction"]))
