@@ -65,7 +65,12 @@ def parse_args(argv):
     p.add_argument("--grid-mur", default="0.1,0.25", help="coarse grid of mu_r searched first")
     p.add_argument("--budget", type=int, default=8,
                    help="evaluations (parameter sets, each at every pressure), including the "
-                        "start point; the grid comes first, then Nelder-Mead from the best point")
+                        "start point; the grid comes first, then the star (--star), then "
+                        "Nelder-Mead from the best point")
+    p.add_argument("--star", type=float, default=0.0,
+                   help="after the grid, the start +- STAR scaled units along each fitted "
+                        "parameter (units 0.1 in mu, 0.05 in mu_r, a factor 10^0.15 in E): points "
+                        "on both sides of the start for the confidence region's quadratic; 0: none")
     p.add_argument("--void-ratio", type=float, default=0.68, help="void ratio of the samples")
     p.add_argument("--e-tol", type=float, default=0.01, help="void ratio tolerance")
     p.add_argument("--width", type=float, default=0.05, help="cell width W (m), x and y")
@@ -132,6 +137,8 @@ def parse_args(argv):
         setattr(a, name, vals)
     if a.budget < 1:
         p.error("--budget %d: at least 1 (the start point)" % a.budget)
+    if not 0.0 <= a.star <= 2.0 or not math.isfinite(a.star):
+        p.error("--star %g: give 0 (none) or a step in (0, 2] scaled units, e.g. 0.5" % a.star)
     if not 1 <= a.seeds <= 20:
         p.error("--seeds %d: between 1 and 20 samples per pressure" % a.seeds)
     if a.jobs < 1:

@@ -1,4 +1,6 @@
-"""The search over mu, mu_r (and E): a grid, then Nelder-Mead from its best points, within a budget."""
+"""The search over mu, mu_r (and E): a grid, the star around the start (points on both sides of it
+along each fitted parameter, which the confidence region's quadratic needs), then Nelder-Mead from
+the best point so far, within a budget."""
 import concurrent.futures as cf
 
 import numpy as np
@@ -6,6 +8,13 @@ import numpy as np
 from .common import BudgetSpent, RANGES, fmt
 from .confidence import SCALE, to_x
 from .misfit import summarise
+
+
+def from_x(n, x):
+    """A parameter from its scaled coordinate (confidence.SCALE: unit steps of 0.1 in mu, 0.05 in
+    mu_r, a factor 10^0.15 = 1.41 in E, searched in log10 E: the grain stiffness matters by its
+    ratio), rounded as the cache's keys are."""
+    return float("%.3g" % 10 ** (x * SCALE[n])) if n == "E" else round(x * SCALE[n], 4)
 
 
 def search(cal, data):
@@ -41,20 +50,17 @@ def search(cal, data):
         for mu in a.grid_mu:
             for mur in a.grid_mur:
                 ev(dict(start, mu=mu, mur=mur))
+        for n in a.fit if a.star > 0 else ():
+            for sign in (-1, 1):
+                ev(dict(start, **{n: from_x(n, to_x(n, start[n]) + sign * a.star)}))
         if len(seen) < a.budget:
             from scipy.optimize import minimize
             best = min(rows, key=lambda r: r["J"])
             names = a.fit
-            # unit steps (confidence.SCALE): 0.1 in mu, 0.05 in mu_r, a factor 10^0.15 = 1.41 in E
-            # (searched in log10 E: the grain stiffness matters by its ratio)
-            scale = SCALE
-
-            def from_x(n, x):
-                return float("%.3g" % 10 ** (x * scale[n])) if n == "E" else round(x * scale[n], 4)
 
             x0 = np.array([to_x(n, best[n]) for n in names])
             # first steps away from the range's upper end (mu, mu_r) and towards stiffer grains (E)
-            simplex = [x0] + [x0 + np.eye(len(names))[i] * (-1 if n != "E" and best[n] / scale[n] > 5 else 1)
+            simplex = [x0] + [x0 + np.eye(len(names))[i] * (-1 if n != "E" and best[n] / SCALE[n] > 5 else 1)
                               for i, n in enumerate(names)]
 
             def f(x):

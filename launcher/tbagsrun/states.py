@@ -6,6 +6,9 @@ product and stamp are the stage's own, checksum verified, before it would run th
 
 Keep a state (from the launcher/ folder, after the stage finished):
   /usr/bin/python3 -m tbagsrun.states keep FOLDER DECK PRODUCT NAME "COMMAND THAT MADE IT"
+Carry a state over a change of its decks that leaves its run unchanged bit for bit (say how that
+was shown; the manifest records it with the files' old and new sha256):
+  /usr/bin/python3 -m tbagsrun.states carry NAME "HOW THE RUN WAS SHOWN UNCHANGED"
 """
 import hashlib
 import json
@@ -115,7 +118,29 @@ def keep(folder, deck, product, name, made_by, root=None):
     return state
 
 
+def carry(name, why, root=None):
+    """The state `name` takes its decks' present contents, for a change shown (`why`) to leave its
+    run bit for bit as it was; the manifest's `carried` list records each such change."""
+    state = Path(root or STATES) / name
+    if not (state / "manifest.json").is_file():
+        raise LaunchError("states: no state %s (states/<name>/manifest.json)" % name)
+    if len(why.split()) < 4:
+        raise LaunchError("states: carry %s: say how the run was shown unchanged (a sentence)" % name)
+    m = json.loads((state / "manifest.json").read_text())
+    changed = changed_inputs(m)
+    if not changed:
+        raise LaunchError("states: %s: its decks have not changed; nothing to carry" % name)
+    now = reads(m["deck"])
+    m.setdefault("carried", []).append(dict(why=why, files={n: [m["inputs"].get(n), now.get(n)] for n in changed}))
+    m["inputs"] = now
+    (state / "manifest.json").write_text(json.dumps(m, indent=1) + "\n")
+    return changed
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 7 or sys.argv[1] != "keep":
+    if len(sys.argv) == 7 and sys.argv[1] == "keep":
+        print(keep(*sys.argv[2:]))
+    elif len(sys.argv) == 4 and sys.argv[1] == "carry":
+        print("carried over: %s" % ", ".join(carry(*sys.argv[2:])))
+    else:
         sys.exit(__doc__)
-    print(keep(*sys.argv[2:]))

@@ -5,6 +5,7 @@ import shutil
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import lmprun
 
@@ -153,3 +154,37 @@ def test_sand_parameter_sets(tmp_path):
     assert coeff(other, "calibrated") == (0.555, mur)
     res = lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path, variables=dict(SMALL, tbags=lmprun.ROOT, sand="toyoura"))
     assert res.returncode != 0 and "sand must be paper or calibrated (got toyoura)" in res.output
+
+
+def test_time_step_follows_the_grains_modulus(tmp_path):
+    """inputs/sand.lmp's rule: a deck's dt0 (its step for grains up to the paper's 1.8 GPa) times
+    sqrt(1.8 GPa / E) for stiffer grains, -var dt overriding; the fill's 2e-6 s follows it too.
+    The shear decks give dt0 (not dt) before they include sand.lmp, and use dt after it."""
+    fit = (lmprun.ROOT / "calibration" / "results" / "sand_calibrated.lmp").read_text()
+    tree = tmp_path / "tree"
+    shutil.copytree(lmprun.ROOT / "inputs", tree / "inputs")
+    (tree / "calibration" / "results").mkdir(parents=True)
+    (tree / "calibration" / "results" / "sand_calibrated.lmp").write_text(
+        re.sub(r"sand_E equal \S+", "sand_E equal 7.2e9", fit))
+    deck = tmp_path / "in.dt"
+    deck.write_text("variable dt0 index 1.5e-6\ninclude ${tbags}/inputs/sand.lmp\n"
+                    "print \"DT=${dt}\" file dt.txt\n")
+
+    def dt(sand, **extra):
+        lmprun.run(deck, tmp_path, variables=dict(tbags=tree, sand=sand, **extra)).check()
+        return float((tmp_path / "dt.txt").read_text().split("=")[1])
+
+    assert dt("paper") == 1.5e-6                      # bit for bit: the paper's runs are unchanged
+    assert dt("calibrated") == pytest.approx(0.75e-6, rel=1e-12)
+    assert dt("calibrated", dt=1e-6) == 1e-6          # a step of one's own
+    lmprun.run(lmprun.ROOT / "inputs" / "in.bag", tmp_path, variables=SMALL).check()
+    lmprun.run(lmprun.ROOT / "inputs" / "in.fill", tmp_path,
+               variables=dict(SMALL, tbags=tree, sand="calibrated", nsettle=10)).check()
+    steps = [l.split() for l in (tmp_path / "log.lammps").read_text().splitlines() if l.startswith("timestep")]
+    assert float(steps[-1][1]) == pytest.approx(1e-6, rel=1e-12)   # as LAMMPS ran it
+    for name in ("in.shear", "in.cyclic", "in.press"):
+        text = (lmprun.ROOT / "inputs" / name).read_text()
+        assert re.search(r"^variable\s+dt0 index", text, re.M), name
+        assert not re.search(r"^variable\s+dt index", text, re.M), name
+        include = re.search(r"^include\s+\$\{tbags\}/inputs/sand.lmp", text, re.M).start()
+        assert text.index("dt0 index") < include < text.index("v_dt"), name

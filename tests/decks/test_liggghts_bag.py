@@ -116,3 +116,16 @@ def test_bag_rolling_and_bending_modulus_in_both_engines(runs, tiny_filled, tmp_
         d, moved = diff(lig, lmp, cols), diff(lmp, runs["lammps"], cols)
         print("bag_mur 0, yarn_bendE 1e9, %s: LIGGGHTS vs LAMMPS %.2e; against the defaults %.2e" % (cols[0], d, moved))
         assert d < 1e-8 and moved > 1e-4
+
+
+@pytest.mark.parametrize("E, given, want", [("1.8e9", None, 1.5e-6), ("7.2e9", None, 0.75e-6),
+                                            ("7.2e9", "1e-6", 1e-6)])
+def test_time_step_follows_the_grains_modulus(tmp_path, E, given, want):
+    """model.lig's time step lines, run in LIGGGHTS: sand.lmp's rule (dt0 times sqrt(1.8 GPa / E)
+    for stiffer grains; -var dt overrides), printed on the SAND line."""
+    text = (lmprun.ROOT / "inputs" / "liggghts" / "model.lig").read_text()
+    block = text[text.index("variable        sand_E index"):text.index("# the bag's fabric")]
+    variables = {"sand_E": E} if given is None else {"sand_E": E, "dt": given}
+    lmprun.run(block, tmp_path, engine="liggghts", variables=variables).check("liggghts")
+    line = [l for l in (tmp_path / "log.lammps").read_text().splitlines() if l.startswith("SAND:")][-1]
+    assert float(re.search(r"time step (\S+) s", line).group(1)) == pytest.approx(want, rel=1e-9)

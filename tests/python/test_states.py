@@ -77,6 +77,29 @@ def test_state_of_other_decks_not_restored(tmp_path, monkeypatch):
     assert "changed: inputs/in.fill" in said[0] and not (tmp_path / "new" / "fill.data").exists()
 
 
+def test_carry_takes_the_decks_new_contents_and_records_why(tmp_path, monkeypatch):
+    """states.carry: a deck change shown not to change the run moves the state's stamp to the
+    decks' new sha256, recording the old and new ones and why; refused without a reason, for a
+    state whose decks did not change, and for a missing state."""
+    made(tmp_path / "run")
+    st = states.keep(tmp_path / "run", "fill", "fill.data", "x", "cmd", root=tmp_path / "st")
+    old = json.loads((st / "manifest.json").read_text())["inputs"]["inputs/in.fill"]
+    with pytest.raises(LaunchError, match="nothing to carry"):
+        states.carry("x", "the same run bit for bit", root=tmp_path / "st")
+    real = states.reads
+    monkeypatch.setattr(states, "reads", lambda deck: dict(real(deck), **{"inputs/in.fill": "1" * 64}))
+    with pytest.raises(LaunchError, match="say how"):
+        states.carry("x", "same", root=tmp_path / "st")
+    with pytest.raises(LaunchError, match="no state y"):
+        states.carry("y", "the same run bit for bit", root=tmp_path / "st")
+    assert states.carry("x", "the same run bit for bit", root=tmp_path / "st") == ["inputs/in.fill"]
+    m = json.loads((st / "manifest.json").read_text())
+    assert m["inputs"]["inputs/in.fill"] == "1" * 64 and states.changed_inputs(m) == []
+    assert m["carried"] == [{"why": "the same run bit for bit", "files": {"inputs/in.fill": [old, "1" * 64]}}]
+    key = (tmp_path / "run" / ".fill.vars").read_text()
+    assert states.restore(tmp_path / "new", "fill", key, "fill.data", print, root=tmp_path / "st")
+
+
 def header_counts(path):
     counts = {}
     with lzma.open(path, "rt") as f:
@@ -94,7 +117,9 @@ COMMITTED = states.manifests()
 
 @pytest.mark.parametrize("folder,m", COMMITTED, ids=[f.name for f, _ in COMMITTED])
 def test_committed_state_checksum(tmp_path, folder, m):
-    assert set(m) == {"deck", "product", "vars", "size", "sha256", "made_by", "inputs"}
+    assert set(m) - {"carried"} == {"deck", "product", "vars", "size", "sha256", "made_by", "inputs"}
+    for c in m.get("carried", []):
+        assert len(c["why"].split()) >= 4 and c["files"]
     assert states.changed_inputs(m) == [], ("the decks changed since %s was made: remake it "
                                             "(states/README.md)" % folder.name)
     json.loads(m["vars"])
