@@ -57,3 +57,12 @@ def region(rows, names, dJ):
         else:
             out[name] = (lo * SCALE[name], hi * SCALE[name])
     return out
+
+
+def indistinguishable(rows, names, dJ, k=2.0):
+    """The evaluated sets whose misfit lies within k sample-noise standard deviations dJ of the
+    best one (the noise cannot tell them from it): (count, {name: (low, high)} over them). A
+    region from evaluations only: bounded by where the search looked, so at least this wide."""
+    best = min(r["J"] for r in rows)
+    near = [r for r in rows if r["J"] <= best + k * dJ]
+    return len(near), {n: (min(r[n] for r in near), max(r[n] for r in near)) for n in names}

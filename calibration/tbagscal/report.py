@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .common import PAPER, W_VOL, fail, twisting_coeffs
-from .confidence import region
+from .confidence import indistinguishable, region
 from .figure import figure
 from .misfit import mean_curve, read_curve
 
@@ -115,12 +115,20 @@ def write_report(cal, data, rows, out_dir):
                            for p in ps),
                 ", ".join("yes" if r["contract_dilate_%g" % p] else "no" for p in ps)))
         # the fit's confidence region and cost
-        reg = region(rows, a.fit, best.get("J_sd", 0.0))
+        dJ = best.get("J_sd", 0.0)
+
+        def ranges(reg):
+            return ", ".join(("E %.3g to %.3g GPa" % (lo / 1e9, hi / 1e9)) if k == "E" else "%s %.3g to %.3g" % (
+                "mu_r" if k == "mur" else k, lo, hi) for k, (lo, hi) in reg.items())
+        reg = region(rows, a.fit, dJ)
         L.append("\nConfidence region of the best set (J <= J_best + %.4f, the samples' spread of their own "
                  "misfits there; a quadratic through the evaluations near it, tbagscal/confidence.py): %s.\n" % (
-                     best.get("J_sd", 0.0), reg if isinstance(reg, str) else ", ".join(
-                         ("E %.3g to %.3g GPa" % (lo / 1e9, hi / 1e9)) if k == "E" else "%s %.3g to %.3g" % (
-                             "mu_r" if k == "mur" else k, lo, hi) for k, (lo, hi) in reg.items())))
+                     dJ, reg if isinstance(reg, str) else ranges(reg)))
+        if dJ > 0:
+            count, spread = indistinguishable(rows, a.fit, dJ)
+            L.append("The evaluated sets the samples' noise cannot tell from the best (J <= J_best + 2 x %.4f): "
+                     "%d of %d, spanning %s (bounded by where the search looked: the region is at least "
+                     "this wide).\n" % (dJ, count, len(rows), ranges(spread)))
         L.append("Cost: %d evaluations, %.2f core-hours of triaxial runs (the samples' preparations besides).\n"
                  % (len(rows), sum(r["seconds_%g" % p] for r in rows for p in ps) / 3600.0))
         L.append("\n## All evaluations\n")

@@ -61,3 +61,12 @@ def test_no_region_without_curvature_evaluations_or_noise():
     assert "not convex" in confidence.region(rows(hessian=saddle), NAMES, 0.01)
     assert "at least 12" in confidence.region(rows(n=8), NAMES, 0.01)
     assert "--seeds" in confidence.region(rows(), NAMES, 0.0)
+
+
+def test_indistinguishable_sets_span_those_within_the_noise():
+    """The evaluated sets within 2 dJ of the best one, and the range each parameter spans over them."""
+    rs = [{"mu": 0.40, "mur": 0.30, "E": 4e9, "J": 0.080}, {"mu": 0.38, "mur": 0.35, "E": 5e9, "J": 0.089},
+          {"mu": 0.45, "mur": 0.28, "E": 3e9, "J": 0.095}, {"mu": 0.30, "mur": 0.20, "E": 9e9, "J": 0.091}]
+    n, spread = confidence.indistinguishable(rs, NAMES, 0.006)
+    assert n == 3 and spread == {"mu": (0.30, 0.40), "mur": (0.20, 0.35), "E": (4e9, 9e9)}
+    assert confidence.indistinguishable(rs, NAMES, 0.001)[1]["mu"] == (0.40, 0.40)
