@@ -1,4 +1,11 @@
 """The figure: stress ratio and volumetric strain against axial strain, data and fits."""
+from .common import PAPER
+
+
+def label(tag, r):
+    """'paper: ...' for a start at the paper's set, else 'start: ...'; 'fitted: ...' for the best."""
+    name = "fitted" if tag == "best" else "paper" if all(r[k] == PAPER[k] for k in PAPER) else "start"
+    return "%s: mu %.3g, mu_r %.3g, E %.3g GPa" % (name, r["mu"], r["mur"], r["E"] / 1e9)
 
 
 def figure(path, data, curves, ps, paper, best):
@@ -12,8 +19,7 @@ def figure(path, data, curves, ps, paper, best):
         ax[1, k].plot(d[:, 0], d[:, 2], "ko", ms=3)
         for tag, r, sty in (("start", paper, "C0--"), ("best", best, "C3-")):
             c = curves[(tag, p)]
-            lab = "%s: mu %.3g, mu_r %.3g" % ("paper" if tag == "start" else "fitted", r["mu"], r["mur"])
-            ax[0, k].plot(c["eps_a_pct"], c["ratio"], sty, label=lab)
+            ax[0, k].plot(c["eps_a_pct"], c["ratio"], sty, label=label(tag, r))
             ax[1, k].plot(c["eps_a_pct"], c["eps_v_pct"], sty)
         ax[0, k].set_title("sigma3 = %g MPa" % p)
         ax[0, k].set_ylabel("sigma1 / sigma3")

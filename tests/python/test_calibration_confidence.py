@@ -70,3 +70,10 @@ def test_indistinguishable_sets_span_those_within_the_noise():
     n, spread = confidence.indistinguishable(rs, NAMES, 0.006)
     assert n == 3 and spread == {"mu": (0.30, 0.40), "mur": (0.20, 0.35), "E": (4e9, 9e9)}
     assert confidence.indistinguishable(rs, NAMES, 0.001)[1]["mu"] == (0.40, 0.40)
+
+
+def test_figure_names_a_start_that_is_not_the_papers():
+    from tbagscal.figure import label
+    assert label("start", {"mu": 0.31, "mur": 0.05, "E": 1.8e9}).startswith("paper: mu 0.31, mu_r 0.05, E 1.8 GPa")
+    assert label("start", {"mu": 0.379, "mur": 0.418, "E": 4.98e9}).startswith("start: mu 0.379")
+    assert label("best", {"mu": 0.4149, "mur": 0.4206, "E": 3.99e9}) == "fitted: mu 0.415, mu_r 0.421, E 3.99 GPa"
