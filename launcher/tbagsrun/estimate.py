@@ -10,7 +10,7 @@ from .presets import DECOMPOSITIONS, ESTIMATE
 from .stages import made_part, run_module, stage, stage_once
 
 
-def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
+def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False, load=None):
     """The paper run's cost measured on its own bag (fill_vars: its size and the user's -var
     values): the bag and its fill (the run's own, in out), the loads' shared part of the
     compression (part: stage_once's arguments, in out/compress; the run's loads reuse it), the
@@ -18,7 +18,8 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
     stretch resumed from the checkpoint at 1, 2 and `ranks` ranks (estimate/np<P>) and a few steps
     at each of DECOMPOSITIONS ranks (estimate/decomp/np<P>: LAMMPS's own decomposition, for the
     scaling model); then the projection (tbagspost/project_time.py). reuse: an earlier projection
-    is said again instead of timing anew."""
+    is said again instead of timing anew. load: the shear's load variables (Fpaper, Fv), its
+    stages only (the bag's and fill's stamps stay those of the run)."""
     use_postprocess()
     from tbagspost.run import log_timestep    # the decks' TIMESTEP line (numpy: after set-up)
     counts = [1] + ([2] if ranks >= 2 else []) + ([ranks] if 2 < ranks <= os.cpu_count() else [])
@@ -26,7 +27,7 @@ def estimate_paper(out, fill_vars, ranks, say, part=None, reuse=False):
     stage_once(out, "bag", ranks, fill_vars, say, "bag.data")
     stage_once(out, "fill", ranks, fill_vars, say, "fill.data")
     e = ESTIMATE
-    shear = dict(fill_vars, v=e["v"], du_csv=e["du_csv"])
+    shear = dict(fill_vars, **(load or {}), v=e["v"], du_csv=e["du_csv"])
     state = dict(shear, fill="../../fill.data", ufinal=e["u_state"], du_dump=e["u_state"], state=1)
     if part:
         state["compress_from"] = made_part(part, folder / "state")

@@ -130,6 +130,14 @@ def decide(preset, out, user, nreal=1, seed=4821, engine="lammps", resume=False,
                           overwrite, estimate_only)    # (a seed among the user's values wins)
 
 
+def estimate_load(preset, user):
+    """The load the estimate's short shear runs at: that of the preset's first run, unless the
+    user gave one (with --loads F1960, 1.96 kN: a few thousand steps past the shared compression,
+    where it compressed the paper bag on to in.shear's default 5.50 kN for the timing alone)."""
+    first = preset.runs[0].variables if preset.runs else {}
+    return {k: first[k] for k in ("Fpaper", "Fv") if k in first and k not in user}
+
+
 def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False,
                engine="lammps", resume=False, overwrite=False, decided=False):
     """One realization of a preset into `out`; user: the -var values given (they win); engine:
@@ -147,7 +155,8 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     (bag, fill, *part), runs = [s for s in stages if s.product], [s for s in stages if not s.product]
     part_stage = part and (part[0].folder, part[0].deck, ranks, part[0].variables, say, part[0].product)
     if preset.estimate:
-        estimate_paper(out, fill_vars, ranks, say, part_stage, resume and not estimate_only)
+        estimate_paper(out, fill_vars, ranks, say, part_stage, resume and not estimate_only,
+                       estimate_load(preset, user))
         if estimate_only:
             return
     for name, line in preset.defaults_said.items():

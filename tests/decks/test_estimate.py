@@ -37,6 +37,9 @@ def test_estimate_makes_the_shared_part_that_the_run_reuses(tmp_path, monkeypatc
     n_part = int(re.search(r"after (\d+) steps", part).group(1))
     state = (tmp_path / "estimate" / "state" / "log.shear").read_text()
     assert "read_restart    ../../compress/compress.restart" in state and "(0.9 of 15.3885" in part
+    # the short shear runs at the load of the preset's first run (--loads F1960: 1.96 kN's)
+    import json
+    assert json.loads((tmp_path / "estimate" / "state" / ".shear.vars").read_text())["Fpaper"] == "5500"
     text = (tmp_path / "estimate" / "projection.txt").read_text()
     print(part, text.splitlines()[1], sep="\n")
     assert "of which %d shared by the loads" % round(n_part * 15 / 3) in text

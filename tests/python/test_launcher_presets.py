@@ -86,6 +86,11 @@ def test_loads_run_some_loads_from_the_compression_of_all(tmp_path):
     assert [s.folder.name for s in stages] == [tmp_path.name, tmp_path.name, "compress", "F3730"]
     assert stages[3].variables["compress_from"] == "../compress/compress.restart"
     assert stages[2].variables == plan(paper, tmp_path, {"seed": 4821})[2].variables
+    # the estimate times the load that runs (it compressed the bag on to 5.50 kN before)
+    from tbagsrun.shear import estimate_load
+    assert estimate_load(parse(["paper", "--loads", "F1960"]).preset, {}) == {"Fpaper": 1960}
+    assert estimate_load(paper, {}) == {"Fpaper": 5500}
+    assert estimate_load(one, {"Fpaper": 3000}) == {}
 
 
 def test_parse_options_variables_and_seed():
