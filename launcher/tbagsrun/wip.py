@@ -1,0 +1,94 @@
+"""An unfinished run carried to the next machine: a preset's output folder packed into one
+xz-compressed tar under states/wip/ (committed; the issue's limit 50 MB), unpacked into an empty
+folder that `./tbags shear PRESET --resume` then continues.
+
+Packed: everything the resume needs and nothing it can make again. Left out: the products a
+committed state restores (states/*/manifest.json: the fill, the shared compression), the older
+of a run's two checkpoints (resume.checkpoints tries the newer first), the shared compression's
+own checkpoints, and the estimate's folder (made again in a few minutes). Tar keeps the files'
+modification times, which resume.checkpoints orders by.
+
+  /usr/bin/python3 -m tbagsrun.wip pack FOLDER NAME      (states/wip/NAME.tar.xz)
+  /usr/bin/python3 -m tbagsrun.wip unpack NAME FOLDER
+"""
+import sys
+import tarfile
+from pathlib import Path
+
+from . import LaunchError, resume, states
+from .stages import MARKER
+
+WIP = states.STATES / "wip"
+LIMIT = 50e6
+SKIP_DIRS = ("estimate",)
+
+
+def restorable(folder, states_root=None):
+    """Paths (relative to folder) of the products a committed state restores there."""
+    out = set()
+    for _, m in states.manifests(states_root):
+        for f in Path(folder).rglob(m["product"]):
+            if f.is_file() and f.stat().st_size == m["size"] and states.sha256(f) == m["sha256"]:
+                out.add(f.relative_to(folder))
+    return out
+
+
+def members(folder, states_root=None):
+    """The files of folder to pack (relative paths), by the rules above."""
+    folder = Path(folder)
+    skip = restorable(folder, states_root)
+    for ck in folder.rglob("shear.restart.1"):
+        older = resume.checkpoints(ck.parent, "shear")[1:]
+        skip |= {(ck.parent / name).relative_to(folder) for name, _ in older}
+    keep = []
+    for f in sorted(p for p in folder.rglob("*") if p.is_file()):
+        rel = f.relative_to(folder)
+        if rel in skip or rel.parts[0] in SKIP_DIRS or f.name.startswith("compress.part."):
+            continue
+        keep.append(rel)
+    return keep
+
+
+def pack(folder, name, root=None, limit=LIMIT, states_root=None):
+    """states/wip/NAME.tar.xz of folder's members; refused over `limit` bytes (removed)."""
+    folder = Path(folder)
+    if not (folder / MARKER).is_file():
+        raise LaunchError("wip: %s is not a run folder of ./tbags (no .tbags-run)" % folder)
+    target = Path(root or WIP) / (name + ".tar.xz")
+    target.parent.mkdir(parents=True, exist_ok=True)
+    with tarfile.open(target, "w:xz", preset=9) as tar:
+        for rel in members(folder, states_root):
+            tar.add(folder / rel, arcname=str(rel))
+    size = target.stat().st_size
+    if size > limit:
+        target.unlink()
+        raise LaunchError("wip: %s would be %.1f MB, over the %.0f MB a commit may carry"
+                          % (target.name, size / 1e6, limit / 1e6))
+    return target, size
+
+
+def unpack(name, folder, root=None):
+    """states/wip/NAME.tar.xz into folder (new or empty: never over a run's files)."""
+    source = Path(root or WIP) / (name + ".tar.xz")
+    folder = Path(folder)
+    if not source.is_file():
+        raise LaunchError("wip: no %s" % source)
+    if folder.exists() and any(folder.iterdir()):
+        raise LaunchError("wip: %s is not empty; unpack into a new folder" % folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    with tarfile.open(source, "r:xz") as tar:
+        for m in tar.getmembers():
+            if not m.isfile() or m.name.startswith(("/", "..")) or "/../" in m.name:
+                raise LaunchError("wip: %s holds %s, not a file of a run folder" % (source, m.name))
+        tar.extractall(folder)
+    return folder
+
+
+if __name__ == "__main__":
+    if len(sys.argv) == 4 and sys.argv[1] == "pack":
+        t, n = pack(sys.argv[2], sys.argv[3])
+        print("%s: %.1f MB" % (t, n / 1e6))
+    elif len(sys.argv) == 4 and sys.argv[1] == "unpack":
+        print(unpack(sys.argv[2], sys.argv[3]))
+    else:
+        sys.exit(__doc__)
