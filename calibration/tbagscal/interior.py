@@ -16,18 +16,11 @@ from scipy.spatial import cKDTree
 
 
 def read_data(path):
-    """(diameters, positions, box [[lo, hi] x 3]) of a LAMMPS data file of atom style sphere."""
-    lines = Path(path).read_text().split("\n")
-    box = np.array([[float(v) for v in l.split()[:2]] for l in lines
-                    if l.endswith(("xlo xhi", "ylo yhi", "zlo zhi"))])
-    start = next(n for n, l in enumerate(lines) if l.startswith("Atoms")) + 2
-    rows = []
-    for l in lines[start:]:
-        if not l.strip():
-            break
-        rows.append([float(x) for x in l.split()[:7]])    # id type diameter density x y z
-    a = np.array(rows)
-    return a[:, 2], a[:, 4:7], box
+    """(diameters, positions, box [[lo, hi] x 3]) of a LAMMPS data file (tbagspost's reader)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+    from tbagspost.datafile import DataFile
+    d = DataFile(path)
+    return d.diameter, d.x, d.box
 
 
 def void_ratio(d, x, box, inset=0.0, periodic=False, points=300000, seed=1):

@@ -1,9 +1,11 @@
-"""A LAMMPS data file of the decks (write_data, atom style bpm/sphere): the box, the atoms
-(id, molecule, type, diameter, density, position, velocities) and the bonds (first and second
-atom id); write_liggghts() writes the same particles as a LIGGGHTS data file.
+"""A LAMMPS data file of the decks (write_data, atom style bpm/sphere, or sphere: the
+calibration's grains): the box, the atoms (id, molecule, type, diameter, density, position,
+velocities) and the bonds (first and second atom id); write_liggghts() writes the same particles
+as a LIGGGHTS data file.
 
-bpm/sphere's Atoms lines are: id molecule type diameter density x y z [ix iy iz]; Velocities:
-id vx vy vz wx wy wz.
+bpm/sphere's Atoms lines are: id molecule type diameter density x y z [ix iy iz]; sphere's the
+same without the molecule (0 here); Velocities: id vx vy vz wx wy wz. The style is the one the
+Atoms line names (write_data writes "Atoms # style"); without a name, bpm/sphere.
 """
 from pathlib import Path
 
@@ -11,6 +13,8 @@ import numpy as np
 
 from tbagspost import fail
 
+# the Atoms columns of each style: molecule (None: none), type, diameter, density, x
+COLUMNS = {"bpm/sphere": (1, 2, 3, 4, 5), "sphere": (None, 1, 2, 3, 4)}
 SECTIONS = ("Atoms", "Velocities", "Bonds", "Masses", "Pair Coeffs", "Bond Coeffs", "PairIJ Coeffs")
 
 
@@ -31,17 +35,21 @@ class DataFile:
             for k, axis in enumerate("xyz"):
                 if words[2:4] == [axis + "lo", axis + "hi"]:
                     self.box[k] = float(words[0]), float(words[1])
+        head = next((line for line in lines if line.split("#")[0].strip() == "Atoms"), "")
+        style = head.split("#")[1].strip() if "#" in head else "bpm/sphere"
+        if style not in COLUMNS:
+            fail("%s: atom style %s; this reader knows %s" % (path, style, ", ".join(COLUMNS)))
+        mol, typ, dia, rho, x = COLUMNS[style]
         atoms = self._section(lines, "Atoms")
-        if atoms is None or atoms.shape[1] < 8:
-            fail("%s has no Atoms section of atom style bpm/sphere" % path)
-        order = np.argsort(atoms[:, 0])
-        atoms = atoms[order]
+        if atoms is None or atoms.shape[1] < x + 3:
+            fail("%s has no Atoms section of atom style %s" % (path, style))
+        atoms = atoms[np.argsort(atoms[:, 0])]
         self.id = atoms[:, 0].astype(np.int64)
-        self.mol = atoms[:, 1].astype(np.int64)
-        self.type = atoms[:, 2].astype(int)
-        self.diameter = atoms[:, 3]
-        self.density = atoms[:, 4]
-        self.x = atoms[:, 5:8]
+        self.mol = np.zeros(len(atoms), dtype=np.int64) if mol is None else atoms[:, mol].astype(np.int64)
+        self.type = atoms[:, typ].astype(int)
+        self.diameter = atoms[:, dia]
+        self.density = atoms[:, rho]
+        self.x = atoms[:, x:x + 3]
         self.v = np.zeros_like(self.x)
         self.omega = np.zeros_like(self.x)
         vel = self._section(lines, "Velocities")

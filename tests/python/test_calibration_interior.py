@@ -36,3 +36,21 @@ def test_face_centred_cubic():
     d = np.full(len(x), A / math.sqrt(2))
     box = np.array([[0, 4 * A]] * 3)
     assert interior.void_ratio(d, x, box, periodic=True) == pytest.approx(3 * math.sqrt(2) / math.pi - 1, rel=5e-3)
+
+
+def test_reads_the_calibrations_data_files(tmp_path):
+    """write_data's atom style sphere (id type diameter density x y z ix iy iz) through tbagspost's
+    DataFile: diameters, positions (by id) and the box; bpm/sphere keeps its molecule column."""
+    head = ("LAMMPS data file\n\n2 atoms\n1 atom types\n\n0 0.05 xlo xhi\n0 0.05 ylo yhi\n"
+            "-0.01 0.1 zlo zhi\n\n")
+    (tmp_path / "s.data").write_text(head + "Atoms # sphere\n\n2 1 0.004 2650 0.03 0.02 0.01 0 0 0\n"
+                                     "1 1 0.003 2650 0.01 0.02 0.03 0 0 0\n")
+    d, x, box = interior.read_data(tmp_path / "s.data")
+    assert list(d) == [0.003, 0.004] and x.tolist() == [[0.01, 0.02, 0.03], [0.03, 0.02, 0.01]]
+    assert box.tolist() == [[0, 0.05], [0, 0.05], [-0.01, 0.1]]
+    from tbagspost.datafile import DataFile
+    (tmp_path / "b.data").write_text(head + "Atoms # bpm/sphere\n\n1 7 2 0.005 450 0.01 0.02 0.03 0 0 0\n"
+                                     "2 7 1 0.004 2650 0.03 0.02 0.01 0 0 0\n")
+    b = DataFile(tmp_path / "b.data")
+    assert b.mol.tolist() == [7, 7] and b.type.tolist() == [2, 1] and b.diameter.tolist() == [0.005, 0.004]
+    assert DataFile(tmp_path / "s.data").mol.tolist() == [0, 0]
