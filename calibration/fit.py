@@ -26,7 +26,7 @@ from tbagscal.bracket import write_bracket  # noqa: E402
 from tbagscal.common import HERE, PAPER, RANGES, FitError  # noqa: E402
 from tbagscal.evaluate import Calibration  # noqa: E402
 from tbagscal.misfit import load_data, misfit_one  # noqa: E402,F401 (misfit_one: for the tests)
-from tbagscal.report import SAND_INCLUDE, rewrite_sand_include, write_report  # noqa: E402
+from tbagscal.report import SAND_INCLUDE, check_replace, rewrite_sand_include, write_report  # noqa: E402
 from tbagscal.runs import lmp_command  # noqa: E402
 from tbagscal.search import search  # noqa: E402
 from tbagscal.study import run_study  # noqa: E402
@@ -93,6 +93,9 @@ def parse_args(argv):
                    help="runs and the cache (evaluations.json, prep.json): rerun to resume")
     p.add_argument("--out", default=str(HERE / "results"), help="report directory")
     p.add_argument("--no-figure", action="store_true", help="skip the figure")
+    p.add_argument("--replace", action="store_true",
+                   help="replace OUT's report (and its sand_calibrated.lmp) with one of another "
+                        "search; without it such a call stops before it runs anything")
     p.add_argument("--sand-include", action="store_true",
                    help="only rewrite OUT/sand_calibrated.lmp from OUT/runs.csv (no runs)")
     p.add_argument("--study", action="store_true",
@@ -166,6 +169,8 @@ def main(argv):
         if a.bracket:
             print(write_bracket([d for d in a.bracket.split(",") if d], data, Path(a.out) / "bracket.md"), end="")
             return 0
+        if not a.study:
+            check_replace(a)
         cal = Calibration(a)
         if a.study:
             run_study(cal, data, a.out)

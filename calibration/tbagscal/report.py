@@ -43,10 +43,7 @@ def write_report(cal, data, rows, out_dir):
                                                  "contraction_%g", "contraction_sd_%g", "ev10_%g", "ev10_sd_%g",
                                                  "contract_dilate_%g", "e0_%g", "I_%g", "wallerr_%g", "shearwall_mean_%g",
                                                  "shearwall_max_%g", "Z_end_%g", "seconds_%g")]
-        (tmp / "options.json").write_text(json.dumps({
-            "rolling_radius": a.rolling_radius, "twisting": a.twisting, "cell": a.cell,
-            "seeds": cal.seeds(), "inertial": a.inertial, "strain": a.strain, "void_ratio": a.void_ratio,
-            "width": a.width, "height": a.height, "pressures": ps}, indent=1) + "\n")
+        (tmp / "options.json").write_text(json.dumps(dict(options(a), seeds=cal.seeds()), indent=1) + "\n")
         with open(tmp / "runs.csv", "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(cols)
@@ -165,6 +162,36 @@ def write_curve(path, curve, note):
 
 
 SAND_INCLUDE = "sand_calibrated.lmp"
+
+
+def options(a):
+    """What a report's runs depend on (options.json): the conventions, the samples and the search,
+    not its budget (a larger one extends it) nor where and how fast it runs."""
+    return {"rolling_radius": a.rolling_radius, "twisting": a.twisting, "cell": a.cell,
+            "inertial": a.inertial, "strain": a.strain, "void_ratio": a.void_ratio, "width": a.width,
+            "height": a.height, "pressures": a.pressures, "seed": a.seed, "n_seeds": a.seeds, "dt": a.dt,
+            "search": {"fit": a.fit, "mu": a.mu, "mur": a.mur, "E": a.E, "grid_mu": a.grid_mu,
+                       "grid_mur": a.grid_mur, "star": a.star}}
+
+
+def check_replace(a):
+    """Refuse to replace OUT's report (and its sand_calibrated.lmp, which the decks read) with one
+    of another search, unless --replace: a call with the same options extends or repeats it."""
+    prev = Path(a.out) / "options.json"
+    if not (Path(a.out) / "report.md").is_file() or a.replace:
+        return
+    try:
+        old = json.loads(prev.read_text())
+    except (OSError, ValueError):
+        old = {}
+    old.pop("seeds", None)
+    new = json.loads(json.dumps(options(a)))    # as options.json holds it (lists, not tuples)
+    if old != new:
+        changed = sorted(k for k in set(old) | set(new) if old.get(k) != new.get(k))
+        fail("%s holds the report of another search (it differs in: %s)%s; give --out DIR for a report "
+             "of its own, or --replace to replace it" % (
+                 a.out, ", ".join(changed) if old else "no options.json: an older fit.py's",
+                 " and the sand_calibrated.lmp the decks read" if (Path(a.out) / SAND_INCLUDE).is_file() else ""))
 
 
 def sand_include(best, n_evaluations, nu=0.1):
