@@ -77,22 +77,37 @@ def shared_steps(log, force):
     return below
 
 
+def first_step(log):
+    """The step of the first thermo row of log (a run continued from a restart: the restart's)."""
+    lines = log.read_text(errors="replace").splitlines()
+    for k, line in enumerate(lines):
+        if line.split()[:1] == ["Step"]:
+            for row in lines[k + 1:]:
+                if row.split()[:1] and row.split()[0].isdigit():
+                    return int(row.split()[0])
+    return None
+
+
 def compression(est_dir, nx, ny, fraction):
-    """(steps of the estimate's compression, of which the loads share): the shared part's own run
-    (compress/log.shear beside the estimate) when the checkpoint continued from it, else the
-    checkpoint's steps before its force reached `fraction` of the smallest load (scaled
-    to this bag's plan)."""
+    """(steps of the estimate's compression, of which the loads share, whether that part was
+    restored): the shared part's own run (compress/log.shear beside the estimate) when the
+    checkpoint continued from it; a part restored from a committed state (its compress.restart
+    without a log) counts the steps the restart was written at; else the checkpoint's steps
+    before its force reached `fraction` of the smallest load (scaled to this bag's plan)."""
     state_log = est_dir / "state" / "log.shear"
     steps = runs(state_log)[0]["steps"]
     if re.search(r"^read_restart\s+\S*compress\.restart\s*$", state_log.read_text(errors="replace"), re.M):
         part_log = est_dir.parent / "compress" / "log.shear"
-        if not part_log.is_file():
-            raise SystemExit("project_time: %s continued from a shared part, but there is no %s"
-                             % (state_log, part_log))
-        shared = runs(part_log)[0]["steps"]
-        return steps + shared, shared
+        if part_log.is_file():
+            shared = runs(part_log)[0]["steps"]
+            return steps + shared, shared, False
+        if (est_dir.parent / "compress" / "compress.restart").is_file() and first_step(state_log):
+            shared = first_step(state_log)
+            return steps + shared, shared, True
+        raise SystemExit("project_time: %s continued from a shared part, but there is no %s"
+                         % (state_log, part_log))
     lightest = min(PAPER["loads"]) * (nx - 2) * (ny - 2) / (PAPER["nx"] - 2) / (PAPER["ny"] - 2)
-    return steps, min(shared_steps(state_log, fraction * lightest), steps)
+    return steps, min(shared_steps(state_log, fraction * lightest), steps), False
 
 
 def bag_particles(nx, ny, nz):
@@ -133,8 +148,15 @@ def project(est_dir, ranks, fraction):
     nx, ny, nz = size
     fill_log = next((f for f in (est_dir / "log.fill", est_dir.parent / "log.fill") if f.is_file()),
                     est_dir.parent / "log.fill")
-    fill_steps = sum(x["steps"] for x in runs(fill_log))
-    comp_steps, shared = compression(est_dir, nx, ny, fraction)
+    restored = []    # stages a committed state made: no log here, nothing to run
+    if not fill_log.is_file() and (est_dir.parent / "fill.data").is_file():
+        fill_steps = 0
+        restored.append("the fill")
+    else:
+        fill_steps = sum(x["steps"] for x in runs(fill_log))
+    comp_steps, shared, part_restored = compression(est_dir, nx, ny, fraction)
+    if part_restored:
+        restored.append("the shared part of the compression")
     dt = timestep(est_dir / "state" / "log.shear")
     timed = measured(est_dir)
     cost = {p: wall_per_step(xs) / xs[0]["atoms"] for p, xs in timed.items()}
@@ -148,11 +170,11 @@ def project(est_dir, ranks, fraction):
     pmax = max(cost)
     for p in sorted(set(cost) | {ranks}):
         c = cost[p] if p in cost else cost[pmax] * pmax / p
-        rows.append((p, c, p not in cost, (fill_steps + shared_paper) * atoms * c / 3600,
+        rows.append((p, c, p not in cost, (fill_steps + (0 if part_restored else shared_paper)) * atoms * c / 3600,
                      steps_per_load * atoms * c / 3600))
     return dict(size=(nx, ny, nz), atoms=atoms, fill_steps=fill_steps, comp_steps=comp_steps, dt=dt,
                 comp_paper=comp_paper, shared=shared, fraction=fraction, shared_paper=shared_paper, shear_steps=shear_steps,
-                rows=rows, timed=timed)
+                rows=rows, timed=timed, restored=restored)
 
 
 def model(est_dir, projection):
@@ -197,9 +219,10 @@ def model(est_dir, projection):
 
 
 def total_steps(r):
-    """The paper run's steps: the fill, the shared part of the compression once, then per load the
-    rest of its compression and its shear."""
-    return r["fill_steps"] + r["shared_paper"] + len(PAPER["loads"]) * (
+    """The paper run's steps: the fill, the shared part of the compression once (unless a committed
+    state holds it), then per load the rest of its compression and its shear."""
+    shared = 0 if "the shared part of the compression" in r.get("restored", ()) else r["shared_paper"]
+    return r["fill_steps"] + shared + len(PAPER["loads"]) * (
         r["comp_paper"] - r["shared_paper"] + r["shear_steps"])
 
 
@@ -218,6 +241,8 @@ def report(r, m=None):
                                                           load_h, fill_h + len(PAPER["loads"]) * load_h))
     if any(x[2] for x in r["rows"]):
         out.append("* extrapolated: ideal scaling from the largest measured rank count")
+    if r.get("restored"):
+        out.append("restored from committed states (states/), not run here: %s" % " and ".join(r["restored"]))
     if m:
         out += model_report(m)
     return "\n".join(out)

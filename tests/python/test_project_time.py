@@ -161,3 +161,26 @@ def test_scaling_model_on_a_checkpoint(tmp_path):
     assert "agree (means within 2 %" in text and "efficiency" in text
     (d / "log.shear").write_text((d / "log.shear").read_text().replace("40 ave  40 max", "40 ave  50 max"))
     assert "DIFFER: ghosts max 40, LAMMPS Nghost 50" in pt.report(r, pt.model(est, r))
+
+
+def test_stages_restored_from_committed_states(tmp_path):
+    """The fill and the shared part restored from committed states (no log.fill, no
+    compress/log.shear, as on a new machine): nothing to run for them; the shared part's steps are
+    the step its restart was written at (the checkpoint's first thermo row)."""
+    est = make(tmp_path)
+    (tmp_path / "log.fill").unlink()
+    (tmp_path / "fill.data").write_text("LAMMPS data file\n")
+    (tmp_path / "compress").mkdir()
+    (tmp_path / "compress" / "compress.restart").write_bytes(b"restart")
+    log = est / "state" / "log.shear"
+    log.write_text("read_restart    ../../compress/compress.restart\n"
+                   "Step v_Fmeas\n 30000 0.5\n 31000 0.9\n" + log.read_text())
+    r = pt.project(est, ranks=2, fraction=COMPRESS_SHARED)
+    assert r["fill_steps"] == 0 and r["shared"] == 30000 and r["comp_steps"] == 69000
+    assert r["restored"] == ["the fill", "the shared part of the compression"]
+    assert all(row[3] == 0 for row in r["rows"])            # fill + shared part: 0 h here
+    assert pt.total_steps(r) == 3 * (39000 * 3 + 0.015 / (0.004 * 2e-6))
+    assert "not run here: the fill and the shared part" in pt.report(r)
+    (tmp_path / "fill.data").unlink()
+    with pytest.raises(SystemExit, match="no .*log.fill"):
+        pt.project(est, ranks=2, fraction=COMPRESS_SHARED)
