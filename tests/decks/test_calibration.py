@@ -164,7 +164,7 @@ def test_conventions_reach_the_deck_and_the_report(tmp_path):
     args = TINY_ARGS + ["--pressures", "0.2", "--budget", "1", "--mu", "0.5", "--mur", "0.1", "--no-figure"]
     eff = run_fit(args, tmp_path)
     assert eff.returncode == 0, eff.stdout[-2000:] + eff.stderr[-2000:]
-    mean = run_fit(args + ["--rolling-radius", "mean"], tmp_path)
+    mean = run_fit(args + ["--rolling-radius", "mean", "--replace"], tmp_path)    # (another search: same --out)
     assert mean.returncode == 0, mean.stdout[-2000:] + mean.stderr[-2000:]
     assert "run mu 0.5 mur 0.1" in mean.stdout    # not taken from the cache
     runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
@@ -174,7 +174,7 @@ def test_conventions_reach_the_deck_and_the_report(tmp_path):
     bad = run_fit(args + ["--rolling-radius", "twice"], tmp_path)
     assert bad.returncode != 0 and "--rolling-radius" in bad.stderr
     # --twisting sds: the deck's pair style twists (its log), with the coefficients the report gives
-    tw = run_fit(args + ["--twisting", "sds"], tmp_path)
+    tw = run_fit(args + ["--twisting", "sds", "--replace"], tmp_path)
     assert tw.returncode == 0, tw.stdout[-2000:] + tw.stderr[-2000:]
     assert "run mu 0.5 mur 0.1" in tw.stdout
     runs = json.loads((tmp_path / "work" / "evaluations.json").read_text())
@@ -331,7 +331,7 @@ def test_fit_recovers_a_known_friction(tmp_path):
     with open(data / "manifest.csv", "w", newline="") as fh:
         csv.writer(fh).writerows([["sigma3_MPa", "file", "sha256"], ["0.2", "Synthetic_0.2.data", digest]])
     res = run_fit(common + ["--mu", "0.3", "--budget", "8", "--grid-mu", "0.45,0.75", "--data", str(data),
-                            "--no-figure"], tmp_path)
+                            "--no-figure", "--replace"], tmp_path)
     print(res.stdout[-3000:])
     assert res.returncode == 0, res.stderr[-2000:]
     found = [l for l in res.stdout.splitlines() if l.startswith("fit.py: evaluation ")]
