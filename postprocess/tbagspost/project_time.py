@@ -101,8 +101,8 @@ def compression(est_dir, nx, ny, fraction):
         if part_log.is_file():
             shared = runs(part_log)[0]["steps"]
             return steps + shared, shared, False
-        if (est_dir.parent / "compress" / "compress.restart").is_file() and first_step(state_log):
-            shared = first_step(state_log)
+        shared = first_step(state_log) if (est_dir.parent / "compress" / "compress.restart").is_file() else None
+        if shared:
             return steps + shared, shared, True
         raise SystemExit("project_time: %s continued from a shared part, but there is no %s"
                          % (state_log, part_log))
