@@ -46,6 +46,12 @@ def checkpoints(folder, deck):
     return []
 
 
+def past_start(runs):
+    """Whether every run (objects with .folder and .deck) finished or has a checkpoint: a --resume
+    of them needs no new estimate of their cost (./tbags shear paper)."""
+    return bool(runs) and all(finished(r.folder, r.deck) or checkpoints(r.folder, r.deck) for r in runs)
+
+
 # a once-made stage's own checkpoints while it runs (stages.stage_once), by its product: the
 # shared compression's (inputs/between_plates.lmp, every compress_every steps), continued with
 # -var compress_from

@@ -20,6 +20,7 @@ from . import LaunchError, guard
 from .estimate import estimate_paper
 from .liggghts_stage import stage_liggghts
 from .presets import COMPRESS_SHARED, Run
+from .resume import past_start
 from .stages import run_module, run_python, stage_once, stage_run, vars_key
 
 
@@ -154,7 +155,10 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     guard.make(out)
     (bag, fill, *part), runs = [s for s in stages if s.product], [s for s in stages if not s.product]
     part_stage = part and (part[0].folder, part[0].deck, ranks, part[0].variables, say, part[0].product)
-    if preset.estimate:
+    if preset.estimate and resume and not estimate_only and past_start(runs):
+        say("tbags shear %s: every run continues from its checkpoint (or finished): no estimate "
+            "made (./tbags shear paper --estimate makes one)" % preset.name)
+    elif preset.estimate:
         estimate_paper(out, fill_vars, ranks, say, part_stage, resume and not estimate_only,
                        estimate_load(preset, user))
         if estimate_only:

@@ -67,12 +67,16 @@ def filled_bag(workdir, size=TINY_BAG):
     return bag_and_fill(workdir, size)
 
 
-# the demo preset's bag and shear, with the decks' step and plate damping said explicitly
-DEMO_SHEAR = dict(DEMO_BAG, **PRESETS["demo"].runs[0].variables, dt=1.5e-6, damping="explicit")
+# the demo preset's bag and shear, with the decks' step and plate damping said explicitly, to
+# u = 2 mm of the preset's 5 (the suite's time: the shear is 85 % of the run; the committed
+# realizations give the spread at every mm, results/demo-realizations-by-u.csv)
+DEMO_U = 2.0
+DEMO_SHEAR = dict(DEMO_BAG, **dict(PRESETS["demo"].runs[0].variables, ufinal=DEMO_U / 1000),
+                  dt=1.5e-6, damping="explicit")
 
 
 def demo_run(workdir):
-    """The main job's bag, fill (seed 4821) and shear (the demo preset's protocol, 1 rank) in
+    """The main job's bag, fill (seed 4821) and shear (the demo preset's protocol to DEMO_U, 1 rank) in
     workdir, with LAMMPS's output; returns (workdir, the shear's screen output)."""
     bag_and_fill(workdir, DEMO_BAG)
     res = run(INPUTS / "in.shear", workdir, variables=DEMO_SHEAR, timeout=3600).check()

@@ -150,3 +150,16 @@ def test_empty_woven_bag_carries_no_load_the_solid_cage_does(tmp_path):
     print("failure load over Matsuoka and Liu's: woven %.2f, solid %.2f" % (sw, ss))
     assert 0.7 < sw < 1.3
     assert ss < sw
+
+
+def test_press_to_a_gap_above_the_bag_is_refused(tmp_path):
+    """The empty woven bag (ten grains) folds to about 60 % of its height under its own weight: a
+    press to 0.9 of the height has nothing to press and says so (before, LAMMPS stopped on an
+    'Illegal thermo output frequency' of the negative step count)."""
+    bag = lmprun.filled_bag(tmp_path / "bag")    # (its bag.data: the tiny bag)
+    empty = dict(lmprun.TINY_BAG, fabric="woven")
+    lmprun.run(lmprun.INPUTS / "in.fill", tmp_path, variables=dict(empty, bag=bag / "bag.data", per_size=1)).check()
+    r = lmprun.run(lmprun.INPUTS / "in.press", tmp_path, variables=dict(empty, gap_final=0.9))
+    print(r.error_line())
+    assert r.returncode != 0 and "ERROR: in.press: the bag stands" in r.output
+    assert "nothing to press (a smaller gap_final)" in r.output

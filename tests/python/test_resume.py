@@ -148,3 +148,17 @@ def test_once_made_stage_continues_or_starts_clean(tmp_path, monkeypatch):
     stages.stage_once(folder, "shear", 1, dict(part, nx=11), said.append, "compress.restart")
     assert calls == [None] and not list(folder.glob("compress.part.*"))
     assert (folder / ".shear.vars").read_text() == stages.vars_key(dict(part, nx=11))
+
+
+def test_past_start_when_every_run_finished_or_has_a_checkpoint(tmp_path):
+    """./tbags shear paper --resume skips the cost estimate (15 min on the paper bag) only when every
+    load it runs finished or has a checkpoint."""
+    from types import SimpleNamespace
+    runs = [SimpleNamespace(folder=tmp_path / f, deck="shear") for f in ("F1960", "F3730")]
+    for r in runs:
+        r.folder.mkdir()
+    assert not resume.past_start(runs) and not resume.past_start([])
+    touch(runs[0].folder / "shear.restart.1")
+    assert not resume.past_start(runs)    # F3730 has neither
+    (runs[1].folder / "screen.shear.txt").write_text("SHEARED: u 15 mm\n")
+    assert resume.past_start(runs)
