@@ -101,29 +101,6 @@ def test_analysis_of_the_run(cycled, tmp_path):
     assert len(table) == 4
 
 
-def test_resume_from_an_amplitude_checkpoint(cycled, tmp_path):
-    """The checkpoint after amplitude 1 resumes with amplitude 2 (-var start 2): the CSV gets the
-    second amplitude again, and the reader keeps the resumed rows; they match the straight run's
-    closely (a fresh force evaluation at set-up: not bit-identical)."""
-    wd, _ = cycled
-    for f in ("cyclic.csv", "cyclic.restart.a1"):
-        shutil.copy(wd / f, tmp_path)
-    straight = cyclic.read_csv(wd / "cyclic.csv")
-    res = lmprun.run(INPUTS / "in.cyclic", tmp_path,
-                     variables=dict(PROTOCOL, restart="cyclic.restart.a1", start=2)).check()
-    assert "AMPLITUDE 1 of" not in res.output and "AMPLITUDE 2 of 2" in res.output
-    raw = np.genfromtxt(tmp_path / "cyclic.csv", delimiter=",", names=True, comments="#")
-    assert len(raw) == len(straight) + 400
-    resumed = cyclic.read_csv(tmp_path / "cyclic.csv")
-    assert len(resumed) == len(straight)
-    a2, b2 = straight[straight["amp"] == 2], resumed[resumed["amp"] == 2]
-    assert np.abs(a2["u_mm"] - b2["u_mm"]).max() < 1e-5
-    span = a2["S_N"].max() - a2["S_N"].min()
-    print("resumed amplitude 2: max |S - S_straight| %.3f N of a %.1f N span"
-          % (np.abs(a2["S_N"] - b2["S_N"]).max(), span))
-    assert np.abs(a2["S_N"][:20] - b2["S_N"][:20]).max() < 0.05 * span
-
-
 def test_triangle_wave(cycled, tmp_path):
     """-var wave triangle: u(t) is a triangle of the same amplitude (constant speed between tips)."""
     wd, _ = cycled
@@ -215,15 +192,18 @@ def test_cycles_after_the_shared_compression(cycled, tmp_path):
     assert abs(d["Fv_N"][1:].mean() - target) < 0.01 * target and "CYCLED" in res.output
 
 
-def test_launcher_resumes_at_the_next_amplitude(cycled, tmp_path):
-    """./tbags shear --resume's step for a cyclic run (stages.stage_run): a run interrupted during
-    amplitude 2 (its checkpoint after amplitude 1, its CSV with amplitude 2's rows written so far)
-    continues at amplitude 2 from cyclic.restart.a1, and its CSV file ends with as many rows as
-    the straight run's (the interrupted rows replaced)."""
+def test_resume_at_the_next_amplitude(cycled, tmp_path):
+    """A run interrupted during amplitude 2 (its checkpoint after amplitude 1, its CSV with 150 of
+    amplitude 2's rows written) continues through ./tbags shear --resume's step for a cyclic run
+    (stages.stage_run): in.cyclic restarts from cyclic.restart.a1 with amplitude 2 (-var start 2,
+    not amplitude 1 again) and the CSV ends with as many rows as the straight run's; the plate
+    follows the straight run's u, and S matches it closely (a fresh force evaluation at the
+    restart: not bit-identical). A CSV with amplitude 2 appended after the interrupted rows (the
+    deck resumed by hand) reads as the launcher's: the reader keeps the later rows."""
     sys.path.insert(0, str(lmprun.ROOT / "launcher"))
     from tbagsrun import stages
     wd, _ = cycled
-    straight = np.genfromtxt(wd / "cyclic.csv", delimiter=",", names=True, comments="#")
+    straight = cyclic.read_csv(wd / "cyclic.csv")
     lines = (wd / "cyclic.csv").read_text().splitlines()
     first2 = next(k for k, line in enumerate(lines) if line.split(",")[1:2] == ["2"])
     (tmp_path / "cyclic.csv").write_text("\n".join(lines[:first2 + 150]) + "\n")    # cut in amplitude 2
@@ -234,7 +214,23 @@ def test_launcher_resumes_at_the_next_amplitude(cycled, tmp_path):
     stages.stage_run(tmp_path, "cyclic", 1, PROTOCOL, said.append, resume=True)
     print("\n".join(said))
     assert said[0].endswith("resuming from cyclic.restart.a1") and any("CYCLED" in s for s in said)
-    rows = np.genfromtxt(tmp_path / "cyclic.csv", delimiter=",", names=True, comments="#")
-    assert len(rows) == len(straight) and np.all(np.diff(rows["time_s"]) > 0)
-    assert np.array_equal(rows["amp"], straight["amp"]) and np.array_equal(rows["cycle"], straight["cycle"])
+    screen = (tmp_path / "screen.cyclic.txt").read_text()
+    assert "AMPLITUDE 1 of" not in screen and "AMPLITUDE 2 of 2" in screen
     assert (tmp_path / "screen.cyclic.txt.1").is_file()
+    # the launcher keeps the rows up to the checkpoint; the deck alone appends amplitude 2 after
+    # whatever the CSV holds: the reader keeps the later of two rows at the same time
+    raw = np.genfromtxt(tmp_path / "cyclic.csv", delimiter=",", names=True, comments="#")
+    resumed = cyclic.read_csv(tmp_path / "cyclic.csv")
+    assert len(raw) == len(resumed) == len(straight)
+    new2 = [line for line in (tmp_path / "cyclic.csv").read_text().splitlines() if line.split(",")[1:2] == ["2"]]
+    (tmp_path / "appended.csv").write_text("\n".join(lines[:first2 + 150] + new2) + "\n")
+    appended = cyclic.read_csv(tmp_path / "appended.csv")
+    assert len(appended) == len(straight) and np.array_equal(appended["S_N"], resumed["S_N"])
+    assert np.all(np.diff(resumed["time_s"]) > 0)
+    assert np.array_equal(resumed["amp"], straight["amp"]) and np.array_equal(resumed["cycle"], straight["cycle"])
+    a2, b2 = straight[straight["amp"] == 2], resumed[resumed["amp"] == 2]
+    assert np.abs(a2["u_mm"] - b2["u_mm"]).max() < 1e-5
+    span = a2["S_N"].max() - a2["S_N"].min()
+    print("resumed amplitude 2: max |S - S_straight| %.3f N of a %.1f N span"
+          % (np.abs(a2["S_N"] - b2["S_N"]).max(), span))
+    assert np.abs(a2["S_N"][:20] - b2["S_N"][:20]).max() < 0.05 * span
