@@ -6,8 +6,8 @@ u = 0.95 and 1.95 mm must fall inside the spread of the committed realizations a
 (results/demo-realizations-by-u.csv, six fills: S 353.6 +- 3.9 N and 437.3 +- 12.2 N): within 3
 standard deviations of their mean, at least the half-range of the fills plus 5 % of the mean;
 F_v within 0.5 % of its target; no yarn breaks. A change of physics that moves the result by more
-than the realizations' own scatter fails here: a sand friction of 0.35 instead of the demo's
-0.31 (S at 1.95 mm +8 %) did (shown when the test was cut from 5 to 2 mm)."""
+than the realizations' own scatter fails here: with a sand friction of 0.35 instead of the paper's
+0.31 it failed at the first row (w 0.0059 mm, below the band 0.0065-0.0098 mm; S +1.4 %, inside)."""
 import csv
 
 import numpy as np
