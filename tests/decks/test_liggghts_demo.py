@@ -1,15 +1,17 @@
 """The demo shear (the main job's bag, fill and protocol) in both engines from the same fill:
 LAMMPS's inputs/in.shear (the suite's shared demo run, ctest fixture "demo", which
-test_demo.py checks) and LIGGGHTS's inputs/liggghts/in.shear, compressed the same way and sheared
-to u = 0.5 mm. A run from one packing is one sample, and two engines that compute the same law to
-round-off still part ways in a packing, so their results must agree as two samples of one packing
-could: within the spread that different packings (realizations) give there, as measured and
-committed in results/demo-realizations-by-u.csv (6 fills: S and w at the row u = 0.45 mm, the
-mean over 0.4-0.5 mm; S 222.1 +- 0.7 N). Checked: S and w (from the start of shear) at that row
-within 2 standard deviations of that spread, and F_v held within 1 % in both. LIGGGHTS runs 3-4
-times slower than LAMMPS: the whole 5 mm (7 min) made this the suite's longest test, and 1 mm
-3 min; 0.5 mm keeps the compression, the servo's hold and the rise of S to 60 % of its 1 mm value
-(measured at 0.45 mm: S 222.68 N LAMMPS, 222.62 N LIGGGHTS)."""
+test_demo.py checks to 2 mm) and LIGGGHTS's inputs/liggghts/in.shear, compressed the same way
+and sheared to u = 1 mm. A run from one packing is one sample, and two engines that compute the
+same law to round-off still part ways in a packing, so their results must agree as two samples
+of one packing could: within the spread that different packings (realizations) give at 1 mm, as
+measured and committed in results/demo-realizations-by-u.csv (6 fills: S and w at the rows
+u = 0.95, 1.95, ... 4.95 mm). Checked: S and w (from the start of shear) at the row u = 0.95 mm within 2 standard deviations of
+that spread, and F_v held within 1 % in both. LIGGGHTS runs 4.4 times slower than LAMMPS: the
+whole 5 mm (7 min) made this the suite's longest test; 1 mm keeps the compression, the servo's
+hold and the first fifth of the shear, where the engines' S-u curves separate. Not less: cut to
+0.5 mm (its row 0.45 mm against the fills' spread there), the test passed with LIGGGHTS's sand
+rolling friction 0 or sliding friction 0.35, which this one fails on w (rolling 0: w 0.0088
+against LAMMPS's 0.0069 mm, twice the fills' sd 0.0010 mm)."""
 import csv
 
 import numpy as np
@@ -22,8 +24,8 @@ from twoengines import convert
 from tbagspost.run import read_csv  # (postprocess/ is on the path through twoengines)
 
 SHEAR = PRESETS["demo"].runs[0].variables
-U = 0.5     # mm, the LIGGGHTS run's end
-ROW = 0.45  # mm, its last CSV row (the mean over 0.4-0.5 mm), where the engines are compared
+U = 1.0     # mm, the LIGGGHTS run's end
+ROW = 0.95  # mm, its last CSV row (the mean over 0.9-1.0 mm), where the engines are compared
 
 
 def spread_at(u_mm):
@@ -62,7 +64,7 @@ def test_demo_within_the_realization_spread(runs):
           "%.4f / %.4f mm (sd %.4f mm)" % (ROW, a["S_N"], b["S_N"], sd["S_N"], a["w_mm"], b["w_mm"], sd["w_mm"]))
     assert abs(a["S_N"] - b["S_N"]) < 2 * sd["S_N"]
     assert abs(a["w_mm"] - b["w_mm"]) < 2 * sd["w_mm"]
-    assert runs[1]["u_mm"][-1] == pytest.approx(ROW, abs=0.002)    # LIGGGHTS sheared to U
+    assert runs[1]["u_mm"][-1] == pytest.approx(ROW, abs=0.002)    # LIGGGHTS sheared to 1 mm
     target = 5500 * 19 * 19 / 79 ** 2
     for d in runs:
         held = d[d["u_mm"] <= U + 0.06]
