@@ -10,7 +10,7 @@ that spread, and F_v held within 1 % in both. LIGGGHTS runs 4.4 times slower tha
 whole 5 mm (7 min) made this the suite's longest test; 1 mm keeps the compression, the servo's
 hold and the first fifth of the shear, where the engines' S-u curves separate. Not less: cut to
 0.5 mm (its row 0.45 mm against the fills' spread there), the test passed with LIGGGHTS's sand
-rolling friction 0 or sliding friction 0.35, which this one fails on w (rolling 0: w 0.0088
+rolling friction 0 (and with its sliding friction 0.35); at 1 mm the first fails on w (0.0088
 against LAMMPS's 0.0069 mm: 0.0019 mm apart, the limit 2 x 0.00055 mm)."""
 import csv
 
