@@ -15,13 +15,11 @@ from .variables import CHOICES
 
 FABRICS = CHOICES["fabric"]
 USAGE = """usage: ./tbags fabric [--size NX NY NZ] [--fabrics solid,words,woven] [-np N] [--out DIR]
-                     [--overwrite] [--no-strength] [--empty-to F] [-var name value ...]
+                     [--overwrite] [--no-strength] [-var name value ...]
 Presses each fabric's bag filled and empty (ten grains) between the plates and reports the share
 of the load the empty bag carries at the filled bag's gap under the load (the vertical stress of
 the paper's 5.5 kN: F_v = 5500 N (nx-2)(ny-2)/79^2); then presses the filled bag on until its
-first yarn bond breaks, against Matsuoka and Liu's soilbag strength (--no-strength: not). The
-empty bag is pressed to --empty-to F of its height (default 0.5: its force-compression curve to
-half the height; the share needs only the filled bag's gap, about 0.95). Default:
+first yarn bond breaks, against Matsuoka and Liu's soilbag strength (--no-strength: not). Default:
 the demo bag 21 x 21 x 7, the three fabrics, 2 ranks, -> runs/fabric/ (half an hour on 2 cores;
 --size 9 9 5: 4 min). -var values go to every deck (e.g. -var sand calibrated)."""
 
@@ -34,7 +32,6 @@ def parse(argv):
     ap.add_argument("--out", type=Path, default=ROOT / "runs" / "fabric")
     ap.add_argument("--overwrite", action="store_true")
     ap.add_argument("--no-strength", dest="strength", action="store_false")
-    ap.add_argument("--empty-to", dest="empty_to", type=float, default=0.5)
     ap.add_argument("-var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"))
     try:
         o = ap.parse_args(argv)
@@ -50,10 +47,9 @@ def parse(argv):
     if "fabric" in o.variables:
         raise LaunchError("fabric: name the fabrics with --fabrics, not -var fabric")
     if "gap_final" in o.variables:
-        raise LaunchError("fabric: -var gap_final would set every press's end; give --empty-to F for "
-                          "the empty bag's (the filled bags stop at 2 F_v and at their first break)")
-    if not 0 < o.empty_to < 1:
-        raise LaunchError("fabric: --empty-to %g: a fraction of the bag's height, between 0 and 1" % o.empty_to)
+        raise LaunchError("fabric: -var gap_final would set where every press ends; here the empty "
+                          "bags are pressed to half their height, the filled ones to 2 F_v and to "
+                          "their first break")
     return o
 
 
@@ -75,7 +71,7 @@ def run(o, say):
     folders = {}
     for fabric in o.fabrics:
         both = {}
-        for kind, fill_vars, press_vars in (("filled", {}, dict(Fstop=2 * Fv)), ("empty", dict(per_size=1), dict(gap_final=o.empty_to))):
+        for kind, fill_vars, press_vars in (("filled", {}, dict(Fstop=2 * Fv)), ("empty", dict(per_size=1), {})):
             folder = out / fabric / kind
             folder.mkdir(parents=True, exist_ok=True)
             common = dict(size, fabric=fabric, **o.variables)
