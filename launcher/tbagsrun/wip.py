@@ -5,12 +5,15 @@ folder that `./tbags shear PRESET --resume` then continues.
 Packed: everything the resume needs and nothing it can make again. Left out: the products a
 committed state restores (states/*/manifest.json: the fill, the shared compression), the older
 of a run's two checkpoints (resume.checkpoints tries the newer first), the shared compression's
-own checkpoints, and the estimate's folder (made again in a few minutes). Tar keeps the files'
+own checkpoints, the estimate's folder (a --resume whose loads all have a checkpoint makes
+none), and the files whose names match a --drop pattern (e.g. the dumps between the ones a study
+needs, when the package would pass the limit: --drop 'dump.*.519670'). Tar keeps the files'
 modification times, which resume.checkpoints orders by.
 
-  /usr/bin/python3 -m tbagsrun.wip pack FOLDER NAME      (states/wip/NAME.tar.xz)
+  /usr/bin/python3 -m tbagsrun.wip pack FOLDER NAME [--drop PATTERN ...]   (states/wip/NAME.tar.xz)
   /usr/bin/python3 -m tbagsrun.wip unpack NAME FOLDER
 """
+import fnmatch
 import sys
 import tarfile
 from pathlib import Path
@@ -33,23 +36,25 @@ def restorable(folder, states_root=None):
     return out
 
 
-def members(folder, states_root=None):
-    """The files of folder to pack (relative paths), by the rules above."""
+def members(folder, states_root=None, drop=()):
+    """The files of folder to pack (relative paths), by the rules above; drop: fnmatch patterns of
+    file names left out."""
     folder = Path(folder)
     skip = restorable(folder, states_root)
-    for ck in folder.rglob("shear.restart.1"):
-        older = resume.checkpoints(ck.parent, "shear")[1:]
-        skip |= {(ck.parent / name).relative_to(folder) for name, _ in older}
+    for run in {ck.parent for ck in folder.rglob("shear.restart.[12]")}:
+        older = resume.checkpoints(run, "shear")[1:]
+        skip |= {(run / name).relative_to(folder) for name, _ in older}
     keep = []
     for f in sorted(p for p in folder.rglob("*") if p.is_file()):
         rel = f.relative_to(folder)
-        if rel in skip or rel.parts[0] in SKIP_DIRS or f.name.startswith("compress.part."):
+        if rel in skip or rel.parts[0] in SKIP_DIRS or f.name.startswith("compress.part.") \
+                or any(fnmatch.fnmatchcase(f.name, d) for d in drop):
             continue
         keep.append(rel)
     return keep
 
 
-def pack(folder, name, root=None, limit=LIMIT, states_root=None):
+def pack(folder, name, root=None, limit=LIMIT, states_root=None, drop=()):
     """states/wip/NAME.tar.xz of folder's members; refused over `limit` bytes (removed)."""
     folder = Path(folder)
     if not (folder / MARKER).is_file():
@@ -57,7 +62,7 @@ def pack(folder, name, root=None, limit=LIMIT, states_root=None):
     target = Path(root or WIP) / (name + ".tar.xz")
     target.parent.mkdir(parents=True, exist_ok=True)
     with tarfile.open(target, "w:xz", preset=9) as tar:
-        for rel in members(folder, states_root):
+        for rel in members(folder, states_root, drop):
             tar.add(folder / rel, arcname=str(rel))
     size = target.stat().st_size
     if size > limit:
@@ -84,11 +89,19 @@ def unpack(name, folder, root=None):
     return folder
 
 
-if __name__ == "__main__":
-    if len(sys.argv) == 4 and sys.argv[1] == "pack":
-        t, n = pack(sys.argv[2], sys.argv[3])
+def main(argv):
+    rest = argv[3:]    # pack's --drop PATTERN pairs
+    if len(argv) >= 3 and argv[0] == "pack" and len(rest) % 2 == 0 and set(rest[::2]) <= {"--drop"}:
+        t, n = pack(argv[1], argv[2], drop=rest[1::2])
         print("%s: %.1f MB" % (t, n / 1e6))
-    elif len(sys.argv) == 4 and sys.argv[1] == "unpack":
-        print(unpack(sys.argv[2], sys.argv[3]))
+    elif len(argv) == 3 and argv[0] == "unpack":
+        print(unpack(argv[1], argv[2]))
     else:
         sys.exit(__doc__)
+
+
+if __name__ == "__main__":
+    try:
+        main(sys.argv[1:])
+    except LaunchError as e:
+        sys.exit(str(e))

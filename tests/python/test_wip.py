@@ -1,7 +1,7 @@
 """launcher/tbagsrun/wip.py: an unfinished run packed for the next machine and unpacked there:
 the newer checkpoint kept with its time, the older one, the products of committed states, the
 compression's own checkpoints and the estimate left out; refused over the size limit, from a
-folder ./tbags did not make, and into a folder that holds files."""
+folder ./tbags did not make, and into a folder that holds files; files left out by name (--drop); a run whose older checkpoint is gone."""
 import os
 import sys
 from pathlib import Path
@@ -59,3 +59,13 @@ def test_refusals(tmp_path):
         wip.pack(f, "x", root=tmp_path / "wip", states_root=st)
     with pytest.raises(LaunchError, match="no "):
         wip.unpack("missing", tmp_path / "n", root=tmp_path / "wip")
+
+
+def test_drop_patterns_and_a_run_with_only_its_second_checkpoint(tmp_path):
+    f, st = run_folder(tmp_path)
+    for step in (353000, 519670):
+        (f / "F1960" / ("dump.grains.%d" % step)).write_text("dump")
+    (f / "F1960" / "shear.restart.1").unlink()    # the newer one alone: kept
+    got = {str(p) for p in wip.members(f, st, drop=["dump.*.519670"])}
+    assert got == {MARKER, ".fill.vars", "F1960/.shear.vars", "F1960/shear.csv", "F1960/shear.restart.2",
+                   "F1960/dump.grains.353000"}
