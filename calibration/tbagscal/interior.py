@@ -14,11 +14,14 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
+POSTPROCESS = str(Path(__file__).resolve().parents[2] / "postprocess")
+if POSTPROCESS not in sys.path:    # tbagspost's data file reader
+    sys.path.insert(0, POSTPROCESS)
+from tbagspost.datafile import DataFile  # noqa: E402
+
 
 def read_data(path):
     """(diameters, positions, box [[lo, hi] x 3]) of a LAMMPS data file (tbagspost's reader)."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
-    from tbagspost.datafile import DataFile
     d = DataFile(path)
     return d.diameter, d.x, d.box
 
