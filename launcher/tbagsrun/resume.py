@@ -38,7 +38,9 @@ def checkpoints(folder, deck):
     folder = Path(folder)
     if deck == "shear":
         files = sorted(folder.glob("shear.restart.[12]"), key=lambda f: f.stat().st_mtime, reverse=True)
-        return [(f.name, {"restart": f.name}) for f in files]
+        # the resumed run writes its first checkpoint into the other file: a stop while it writes
+        # leaves the one it resumed from (after ./tbags wip unpack, the only one)
+        return [(f.name, {"restart": f.name, "checkpoint_first": 3 - int(f.name[-1])}) for f in files]
     if deck == "cyclic":
         amps = [(int(m.group(1)), f) for f in folder.glob("cyclic.restart.a*")
                 if (m := re.fullmatch(r"cyclic\.restart\.a(\d+)", f.name))]

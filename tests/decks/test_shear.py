@@ -39,7 +39,8 @@ def test_protocol_on_a_tiny_bag(filled):
                                          ({"Fv": -5}, "Fv must be > 0"),
                                          ({"ufinal": 0}, "v and ufinal must be > 0"),
                                          ({"du_dump": 5e-5}, "du_dump >= du_csv"),
-                                         ({"damping": "sideways"}, "damping must be implicit or explicit")])
+                                         ({"damping": "sideways"}, "damping must be implicit or explicit"),
+                                         ({"checkpoint_first": 3}, "checkpoint_first must be 1 or 2")])
 def test_bad_variables(tmp_path, var, message):
     res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(SIZE, **var))
     assert res.returncode != 0 and message in res.output
@@ -62,9 +63,13 @@ def test_resume_from_checkpoint(filled, tmp_path):
     v = dict(SIZE, v=0.02, ufinal=0.0006, du_dump=0.0002, du_csv=2e-5)
     lmprun.run(INPUTS / "in.shear", tmp_path, variables=v).check()
     straight = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)
-    # the checkpoint's row is not written again: the resumed rows continue after it
+    # the checkpoint's row is not written again: the resumed rows continue after it; its first
+    # checkpoint goes to the other file (-var checkpoint_first, as the launcher sets it), the
+    # one resumed from is left as it was
+    resumed_from = (tmp_path / "shear.restart.2").read_bytes()
     res = lmprun.run(INPUTS / "in.shear", tmp_path, np_ranks=2,
-                     variables=dict(v, restart="shear.restart.2")).check()
+                     variables=dict(v, restart="shear.restart.2", checkpoint_first=1)).check()
+    assert (tmp_path / "shear.restart.2").read_bytes() == resumed_from
     rows = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)[len(straight):]
     same = straight[len(straight) - len(rows):]
     span = straight["S_N"].max() - straight["S_N"].min()
@@ -80,6 +85,23 @@ def test_resume_from_checkpoint(filled, tmp_path):
     assert np.abs(rows["S_N"] - same["S_N"]).max() < 0.10 * span
     assert np.abs(rows["w_mm"] - same["w_mm"]).max() < 0.05
     assert "SHEARED: u 0.600 mm" in res.output
+
+
+def test_resumed_run_never_writes_over_its_checkpoint(filled, tmp_path):
+    """Resumed from shear.restart.1 with -var checkpoint_first 2 (what ./tbags shear --resume
+    passes), the run's first checkpoint goes to shear.restart.2: a stop while it writes leaves the
+    checkpoint it came from (after ./tbags wip unpack, the only one). With the deck's former fixed
+    order (.1 first) this fails: .1 is written over at u = 0.4 mm."""
+    import shutil
+    shutil.copy(filled / "fill.data", tmp_path)
+    v = dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.0002)
+    lmprun.run(INPUTS / "in.shear", tmp_path, variables=v).check()    # shear.restart.1 at 0.2 mm
+    (tmp_path / "shear.restart.2").unlink(missing_ok=True)
+    came_from = (tmp_path / "shear.restart.1").read_bytes()
+    lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(v, ufinal=0.0004, restart="shear.restart.1",
+                                                              checkpoint_first=2)).check()
+    assert (tmp_path / "shear.restart.1").read_bytes() == came_from
+    assert (tmp_path / "shear.restart.2").is_file()
 
 
 def test_loads_share_the_start_of_their_compression(filled, tmp_path):

@@ -37,7 +37,9 @@ def touch(path, age=0.0):
 def test_checkpoints_newest_first(tmp_path):
     touch(tmp_path / "shear.restart.1", age=10)
     touch(tmp_path / "shear.restart.2", age=20)
-    assert [n for n, _ in resume.checkpoints(tmp_path, "shear")] == ["shear.restart.1", "shear.restart.2"]
+    assert resume.checkpoints(tmp_path, "shear") == [
+        ("shear.restart.1", {"restart": "shear.restart.1", "checkpoint_first": 2}),    # writes .2 first
+        ("shear.restart.2", {"restart": "shear.restart.2", "checkpoint_first": 1})]
     for k in (1, 2, 10):
         touch(tmp_path / ("cyclic.restart.a%d" % k))
     touch(tmp_path / "cyclic.restart.a3.bak")
@@ -78,7 +80,7 @@ def test_stage_run_resumes_keeps_and_refuses(tmp_path, monkeypatch):
         fh.write("0.6,7\n")
     fake.finish = True
     stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
-    assert fake.calls[-1] == dict(v, restart="shear.restart.1")
+    assert fake.calls[-1] == dict(v, restart="shear.restart.1", checkpoint_first=2)
     assert (run / "shear.csv").read_text() == "time_s,S_N\n0.0,1\n0.5,9\n"
     assert (run / "log.shear.1").is_file() and (run / "screen.shear.txt.1").is_file()
     stages.stage_run(run, "shear", 2, v, said.append, resume=True, origin="fill A")
