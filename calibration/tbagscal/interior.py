@@ -6,7 +6,6 @@ the loose layer the flat plates leave at each face; this one does not.
   /usr/bin/python3 -m tbagscal.interior prep.restart [--inset 6.4] [--periodic]
 (from calibration/; needs TBAGS_LMP to turn the restart into a data file)"""
 import argparse
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -51,11 +50,11 @@ def main(argv):
     ap.add_argument("--periodic", action="store_true")
     a = ap.parse_args(argv)
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-    from tbagscal.runs import lmp_command
+    from tbagscal.runs import lammps    # the launcher's runner (its environment, its errors)
     with tempfile.TemporaryDirectory() as tmp:
         deck = Path(tmp) / "in.data"
         deck.write_text("read_restart %s\nwrite_data %s/w.data nocoeff nofix\n" % (Path(a.restart).resolve(), tmp))
-        subprocess.run([str(lmp_command()), "-log", "none", "-in", str(deck)], check=True, capture_output=True)
+        lammps.run(deck, tmp, log="none").check()
         d, x, box = read_data(Path(tmp) / "w.data")
     whole = void_ratio(d, x, box, 0.0, a.periodic)
     if a.periodic:
