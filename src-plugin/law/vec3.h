@@ -4,7 +4,9 @@
 
 #include <cmath>
 
-// forced inlining of the laws' hot functions into their loops (values stay in registers)
+// forced inlining of the laws' hot functions into their loops (values stay in registers), down to
+// the vector helpers below: a large caller (a whole contact in LIGGGHTS's pair) otherwise
+// exhausts GCC's inlining budget and calls each + - * dot out of line
 #if defined(__GNUC__)
 #define TBAGS_INLINE inline __attribute__((always_inline))
 #else
@@ -14,9 +16,9 @@
 namespace tbags {
 namespace vec {
 
-inline double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline double len(const double *a) { return std::sqrt(dot(a, a)); }
-inline void cross(const double *a, const double *b, double *c)
+TBAGS_INLINE double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+TBAGS_INLINE double len(const double *a) { return std::sqrt(dot(a, a)); }
+TBAGS_INLINE void cross(const double *a, const double *b, double *c)
 {
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
@@ -28,17 +30,17 @@ inline void cross(const double *a, const double *b, double *c)
 struct V3 {
   double x, y, z;
 };
-inline V3 load3(const double *a) { return V3{a[0], a[1], a[2]}; }
-inline void store3(const V3 &a, double *b) { b[0] = a.x; b[1] = a.y; b[2] = a.z; }
-inline V3 operator+(const V3 &a, const V3 &b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(const V3 &a, const V3 &b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator*(double s, const V3 &a) { return V3{s * a.x, s * a.y, s * a.z}; }
-inline double dot(const V3 &a, const V3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(const V3 &a, const V3 &b)
+TBAGS_INLINE V3 load3(const double *a) { return V3{a[0], a[1], a[2]}; }
+TBAGS_INLINE void store3(const V3 &a, double *b) { b[0] = a.x; b[1] = a.y; b[2] = a.z; }
+TBAGS_INLINE V3 operator+(const V3 &a, const V3 &b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
+TBAGS_INLINE V3 operator-(const V3 &a, const V3 &b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
+TBAGS_INLINE V3 operator*(double s, const V3 &a) { return V3{s * a.x, s * a.y, s * a.z}; }
+TBAGS_INLINE double dot(const V3 &a, const V3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+TBAGS_INLINE V3 cross(const V3 &a, const V3 &b)
 {
   return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline V3 select(bool c, const V3 &a, const V3 &b)
+TBAGS_INLINE V3 select(bool c, const V3 &a, const V3 &b)
 {
   return V3{c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
 }
@@ -77,7 +79,7 @@ TBAGS_INLINE V3 onto_plane(const V3 &a, const V3 &n)
   return small ? b : onto_plane_exact(a, n);
 }
 // onto_plane() in place on a 3-array (the bond laws' history)
-inline void rotate_onto_plane(double *a, const double *n) { store3(onto_plane(load3(a), load3(n)), a); }
+TBAGS_INLINE void rotate_onto_plane(double *a, const double *n) { store3(onto_plane(load3(a), load3(n)), a); }
 
 }    // namespace vec
 }    // namespace tbags

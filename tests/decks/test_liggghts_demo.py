@@ -6,8 +6,8 @@ same law to round-off still part ways in a packing, so their results must agree 
 of one packing could: within the spread that different packings (realizations) give at 1 mm, as
 measured and committed in results/demo-realizations-by-u.csv (6 fills: S and w at the rows
 u = 0.95, 1.95, ... 4.95 mm). Checked: S and w (from the start of shear) at the row u = 0.95 mm within 2 standard deviations of
-that spread, and F_v held within 1 % in both. LIGGGHTS runs 4.4 times slower than LAMMPS: the
-whole 5 mm (7 min) made this the suite's longest test; 1 mm keeps the compression, the servo's
+that spread, and F_v held within 1 % in both. LIGGGHTS runs about 3 times slower than LAMMPS: the
+whole 5 mm made this the suite's longest test; 1 mm keeps the compression, the servo's
 hold and the first fifth of the shear, where the engines' S-u curves separate. Not less: cut to
 0.5 mm (its row 0.45 mm against the fills' spread there), the test passed with LIGGGHTS's sand
 rolling friction 0 (and with its sliding friction 0.35); at 1 mm the first fails on w (0.0088
