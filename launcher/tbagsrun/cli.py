@@ -30,8 +30,8 @@ without --resume, or with --resume and other -var values, it is refused before a
 shared with all its loads: one load of the paper bag per job; a later call with other loads adds
 them to the same folder (its bag, fill and shared compression reused).
 --progress SECONDS: a stage's progress on the console, at least this often and 10 % of the stage
-apart, whichever is later (% done and the time left measured from the stage's rate; default 30,
-0 for none).
+apart, whichever is later, and every 10 min in a slower stage (% done and the time left measured
+from the stage's rate; default 30, 0 for none).
 Presets of several loads (trends, cyclic, paper) compress once to 0.9 of the smallest load's F_v
 (in compress/) and continue each load from there (-var compress_to P sets the fraction, 0: each
 load compresses by itself).

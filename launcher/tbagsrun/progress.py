@@ -1,7 +1,8 @@
 """A long LAMMPS stage's progress on the console (./tbags shear --progress SECONDS): the last
 thermo row of its screen output in one line, at least SECONDS apart and, once a % is known, at
-least 10 % of the stage apart (whichever is later): the shear's % done (in.shear's v_done), the
-cycles' % (in.cyclic's v_pct), or the compression's force (v_Fmeas). The time left is measured:
+least 10 % of the stage apart (whichever is later), or 10 min apart when the stage is slower: the
+shear's % done (in.shear's v_done), the cycles' % (in.cyclic's v_pct), or the compression's force
+(v_Fmeas). The time left is measured:
 the stage's own rate since its % first showed; before there is a rate, LAMMPS's estimate
 (CPULeft, in.cyclic's v_eta) if it has one, else "estimating" (LAMMPS's first row says 0)."""
 import threading
@@ -79,13 +80,15 @@ def tail_lines(path):
         return []
 
 
-STEP_PCT = 10    # % of a stage between two lines at least
+STEP_PCT = 10    # % of a stage between two lines at least ...
+QUIET_MAX = 600  # ... unless this many seconds have passed without one (a stage of hours)
 
 
 class Watch:
     """with Watch(screen, label, every, say): while the block runs, says '  label: <status>'
     when its status changed, at least `every` seconds after the block began or the last line
-    and at least STEP_PCT % of the stage after the last line (none if every is 0)."""
+    and at least STEP_PCT % of the stage after the last line, or QUIET_MAX seconds after it when
+    the stage moves slower (the paper run: a line per 10 min, not per 40); none if every is 0."""
 
     def __init__(self, screen, label, every, say, clock=time.monotonic):
         self.screen, self.label, self.every, self.say = Path(screen), label, every, say
@@ -103,7 +106,8 @@ class Watch:
             if pct is not None and (first is None or pct < first[1]):
                 first = (now, pct)    # where this stage's % began (a new stage: again)
             if now - said_at < self.every or (pct is not None and said_pct is not None and
-                                               0 <= pct - said_pct < STEP_PCT):
+                                               0 <= pct - said_pct < STEP_PCT and
+                                               now - said_at < QUIET_MAX):
                 continue
             left = None
             if pct is not None and pct - first[1] >= 1:    # the stage's own rate since then

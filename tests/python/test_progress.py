@@ -76,3 +76,21 @@ def test_first_estimate_is_measured_and_lines_are_ten_percent_apart(tmp_path):
     assert all(b - a >= 10 for a, b in zip(pcts, pcts[1:])), said
     # at 12 %: (12 - 0.2) % in 29 s -> 88 % in 216 s, about 4 min (not LAMMPS's 999 s)
     assert "  shear: 12 % of the shear (u 0.00 mm), about 4 min left" in said, said
+
+
+def test_a_slow_stage_says_its_progress_every_ten_minutes(tmp_path):
+    """A stage of hours (the paper run: a thermo row per 2 % of the shear, about 8 min apart)
+    gets a line when 10 min have passed without one, though it moved less than 10 %."""
+    screen = tmp_path / "screen.shear.txt"
+    head = SHEAR.splitlines()[0] + "\n"
+    screen.write_text(head + shear_row(1, 20, 0))
+    now = [0.0]
+    said = []
+    with progress.Watch(screen, "shear", 0.01, said.append, clock=lambda: now[0]):
+        time.sleep(0.1)
+        for k in range(1, 6):
+            now[0] = 480.0 * k    # 2 % per 8 min
+            screen.write_text(head + shear_row(100 * k, 20 + 2 * k, 0))
+            time.sleep(0.1)
+    pcts = [float(line.split(": ")[1].split(" %")[0]) for line in said]
+    assert pcts == [22, 26, 30], said    # at 8, 24 and 40 min (8 min after a line: too soon)
