@@ -84,6 +84,13 @@ def finite_rows(d, columns, path, where=None):
     return d
 
 
+def rms(x):
+    """Root mean square of x (e.g. the difference of two curves on one grid)."""
+    import numpy as np
+
+    return float(np.sqrt(np.mean(np.square(x))))
+
+
 def superseded(times, tol=0.0):
     """The rows of a resumed run's CSV that a later row rewrote: a resumed deck appends from its
     checkpoint's time, so a row is superseded when some later row is at its time or earlier

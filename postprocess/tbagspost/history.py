@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tbagspost import design, fail, finite_rows, read_columns, style, superseded
+from tbagspost import design, fail, finite_rows, read_columns, rms, style, superseded
 from tbagspost.cyclic import RowsRun
 
 COLUMNS = ("time_s", "th_s", "chunk", "u_mm", "S_N", "Fv_N")
@@ -50,7 +50,7 @@ def compare(run, models):
         Sm = model.simulate(np.r_[0.0, u])[1:]
         Wm = work(u, Sm)
         rows.append(dict(run=run.name, fabric=run.fabric, Fv_N=run.fv_N, model=name,
-                         rms_of_peak=float(np.sqrt(np.mean((Sm - S) ** 2)) / peak),
+                         rms_of_peak=rms(Sm - S) / peak,
                          W_mJ=Wm, W_ratio=Wm / W, S_peak_N=float(np.max(np.abs(Sm))), S=Sm))
     return rows
 

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tbagspost import rms
+
 
 # ---- one loop -------------------------------------------------------------------------------
 @dataclass
@@ -210,6 +212,6 @@ def fit(loops, tips=None, guess=None):
     sigma = RO(K0=ro.K0 * sd[0], S_y=ro.S_y * sd[1], r=(ro.r - 1) * sd[2])
     nb = len(tips)
     loop_err = np.concatenate([(ro.branch_u(S, u_r, S_r) - u) / a for u, S, u_r, S_r, a in prepared])
-    return Fit(model=ro, sigma=sigma, rms_backbone=float(np.sqrt(np.mean(sol.fun[:nb] ** 2))),
-               rms_loops=float(np.sqrt(np.mean(loop_err ** 2))) if len(loop_err) else float("nan"),
+    return Fit(model=ro, sigma=sigma, rms_backbone=rms(sol.fun[:nb]),
+               rms_loops=rms(loop_err) if len(loop_err) else float("nan"),
                n_points=m)

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from tbagspost import hysteresis
+from tbagspost import hysteresis, rms
 
 
 # ---- the loops a model is fitted to ---------------------------------------------------------
@@ -345,7 +345,7 @@ def evaluate(model, lanes, sd=None, label=""):
     data, fitted = lanes.measures(), lanes.measures(sims)
     err = np.concatenate([(lanes.last(k, sims[k]) - lanes.last(k, lanes.S[k])) / data[k].S_a
                           for k in range(len(sims))])
-    return ModelFit(model=model, sd=sd or {}, rms_S=float(np.sqrt(np.mean(err ** 2))),
+    return ModelFit(model=model, sd=sd or {}, rms_S=rms(err),
                     K_eq=[(d.K_eq, f.K_eq) for d, f in zip(data, fitted)],
                     h_eq=[(d.h_eq, f.h_eq) for d, f in zip(data, fitted)], u_a=[d.u_a for d in data],
                     label=label)

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import loadpath
+from . import loadpath, rms
 from .check_trends import realizations
 from .realizations import mean_curves
 from .run import Run, read_csv
@@ -78,10 +78,6 @@ def sand_share(folder):
     share = float(np.mean(shares)) if shares else float("nan")
     kept.write_text("%.17g %s\n" % (share, " ".join(map(str, steps))))
     return share
-
-
-def rms(x):
-    return float(np.sqrt(np.mean(np.square(x))))
 
 
 def compare(curves, ref, u_from=U_FROM):
