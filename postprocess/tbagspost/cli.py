@@ -7,7 +7,7 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import (cyclic, fail, history, isolator_report, loadpath, network, realizations, shape,
+from tbagspost import (cyclic, fail, history, isolator_report, loadpath, network, rate, realizations, shape,
                        shear, stack, style, triax, vtkout)
 from tbagspost.run import Run
 
@@ -21,7 +21,8 @@ Writes, for each RUN_DIR, into RUN_DIR/figures (or OUTDIR/<run name> with -o):
   network_u<U>mm.png   contact-force network in the central x-z section (bag-sand reds,
                        sand-sand blues), bond tension along the bag, mean f_n against x
                                                              (dump.contacts.*, dump.bonds.*)
-  summary.txt          the numbers behind the figures (also printed)
+  summary.txt          the numbers behind the figures (also printed), with the inertial number
+                       nominal and from the sand's own stress (the load path's sand share)
 with several RUN_DIRs also shear-overlay.png (all runs' S-u and w-u) into OUTDIR (default: the
 runs' common parent folder). With --vtk, RUN_DIR/paraview (or OUTDIR/<run name>/paraview):
 particles_<step>.vtu, contacts_<step>.vtp, bonds_<step>.vtp, plates_<step>.vtp and
@@ -137,6 +138,9 @@ def process(run, args, several):
                 lines.append("u %.1f mm: %s" % (st["u_mm"], loadpath.describe(
                     found[step], run.at_step(step, "S_N"), run.at_step(step, "Fv_N"))))
     if found:
+        line = rate.describe_inertial(run, found)
+        if line:
+            lines.append(line)
         out.mkdir(parents=True, exist_ok=True)
         loadpath.write_csv(loadpath.table(run, found), out / "loadpath.csv")
         written.append(out / "loadpath.csv")

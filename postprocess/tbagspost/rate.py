@@ -73,11 +73,32 @@ def sand_share(folder):
             return float(share)
     if not steps:
         return float("nan")
-    shares = [r["sand-sand"][0] / run.at_step(step, "Fv_N") for step, r in loadpath.by_step(run).items()
-              if run.at_step(step) > 0]
-    share = float(np.mean(shares)) if shares else float("nan")
+    share = share_while_shearing(run, loadpath.by_step(run))
     kept.write_text("%.17g %s\n" % (share, " ".join(map(str, steps))))
     return share
+
+
+def share_while_shearing(run, found):
+    """The mean over the dumps at u > 0 of the sand-sand contacts' vertical force across the
+    mid-height over the plate's F_v (found: loadpath.by_step(run)); nan without such dumps."""
+    shares = [r["sand-sand"][0] / run.at_step(step, "Fv_N") for step, r in found.items()
+              if run.at_step(step) > 0]
+    return float(np.mean(shares)) if shares else float("nan")
+
+
+def describe_inertial(run, found):
+    """The summary line of a run's inertial number: nominal (the deck's, F_v over the plan) and
+    from the sand's own stress (I / sqrt(share)); None without the deck's INERTIAL line."""
+    nominal = inertial_number(run.path)
+    if np.isnan(nominal):
+        return None
+    share = share_while_shearing(run, found)
+    if np.isnan(share) or share <= 0:
+        return "inertial number %.2e (nominal: F_v over the plan area; no sand share measured)" % nominal
+    return ("inertial number %.2e nominal (F_v over the plan area), %.2e from the sand's own stress "
+            "(sand-sand contacts carry %.0f %% of F_v across mid-height, mean of %d dumps while "
+            "shearing); quasi-static below 1e-3" % (nominal, nominal / np.sqrt(share), 100 * share,
+                                                     sum(run.at_step(s) > 0 for s in found)))
 
 
 def compare(curves, ref, u_from=U_FROM):

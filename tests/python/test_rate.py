@@ -89,3 +89,19 @@ def test_the_share_is_kept_when_the_dumps_go(tmp_path, monkeypatch):
     (run / "dump.contacts.200").write_text("")  # other dumps: measured again
     assert abs(rate.sand_share(run) - 0.5) < 1e-12
     assert np.isnan(rate.sand_share(root / "r1" / "I2"))    # neither dumps nor a kept share
+
+
+def test_the_runs_summary_gives_both_inertial_numbers(tmp_path, monkeypatch):
+    """A shear run's summary line: the nominal inertial number and the sand's, I / sqrt(share),
+    the share averaged over the dumps while shearing only (u > 0); none without the INERTIAL line."""
+    run_dir = tmp_path / "run"
+    write(run_dir, lambda x: 100.0, lambda x: 0.0, 2.0e-4)
+    at = {100: 0.0, 200: 1.0, 300: 2.0}          # u (mm) of each dump step; the first before shear
+    share = {100: 0.9, 200: 0.04, 300: 0.04}
+    monkeypatch.setattr(rate.Run, "at_step", lambda self, step, column="u_mm": 212.0 if column == "Fv_N" else at[step])
+    found = {s: {"sand-sand": (share[s] * 212.0, 0.0, 10)} for s in at}
+    line = rate.describe_inertial(rate.Run(run_dir), found)
+    assert "2.00e-04 nominal" in line and "1.00e-03 from the sand's own stress" in line
+    assert "4 % of F_v" in line and "2 dumps" in line
+    (run_dir / "log.shear").unlink()
+    assert rate.describe_inertial(rate.Run(run_dir), found) is None
