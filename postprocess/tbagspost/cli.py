@@ -7,10 +7,11 @@ import argparse
 import os
 from pathlib import Path
 
-from tbagspost import (cyclic, fail, history, isolator_report, loadpath, network, rate, realizations, shape,
-                       shear, stack, style, triax, vtkout)
+from tbagspost import (cyclic, fail, forces, history, isolator_report, loadpath, network, rate, realizations,
+                       shape, shear, stack, style, triax, vtkout)
 from tbagspost.run import Run
 
+FIGURES = ("shear", "shape", "network", "forces")
 DESCRIPTION = """Figures of the paper and ParaView files from shear runs (inputs/in.shear) and
 triaxial runs (calibration/in.triax).
 
@@ -21,6 +22,9 @@ Writes, for each RUN_DIR, into RUN_DIR/figures (or OUTDIR/<run name> with -o):
   network_u<U>mm.png   contact-force network in the central x-z section (bag-sand reds,
                        sand-sand blues), bond tension along the bag, mean f_n against x
                                                              (dump.contacts.*, dump.bonds.*)
+  forces_u<U>mm.png    the paper's Fig. 5 views of the resultant contact forces on the sand: 3D
+                       (the strongest contacts), the centre section, the side (the sand behind
+                       the front wall), one colour scale                  (dump.contacts.*)
   summary.txt          the numbers behind the figures (also printed), with the inertial number
                        nominal and from the sand's own stress (the load path's sand share)
 with several RUN_DIRs also shear-overlay.png (all runs' S-u and w-u) into OUTDIR (default: the
@@ -48,7 +52,7 @@ friction slider in series with its bags' model. Runs of the same F_v are fills o
 of in.cyclic -var history FILE at a load among the RUN_DIRs) compares the DEM's S along that
 history with each model's (history_check.csv, history-<run>.png).
 u of a dump step: time = step * dt (dt from the run's log) interpolated in shear.csv.
-Shape and network figures are made at the dump nearest to each --u (default: the last dump).
+Shape, network and forces figures are made at the dump nearest to each --u (default: the last dump).
 With --realizations, the RUN_DIRs are realizations of one test (fills of different seeds; runs of
 the same name, e.g. r1/F5500 and r2/F5500, form a group): their mean curves with +-1 standard
 deviation and min-max, and the table of peak S, S at 5 mm, contraction and dilatancy with their
@@ -61,8 +65,8 @@ def parse(argv=None):
     ap.add_argument("runs", nargs="+", metavar="RUN_DIR", help="shear run directories")
     ap.add_argument("--u", default=None, metavar="U1,U2",
                     help="shear displacements (mm) for the shape and network figures; default: the last dump")
-    ap.add_argument("--only", default="shear,shape,network", metavar="LIST",
-                    help="figures to make, from shear,shape,network (default: all); 'none' for none")
+    ap.add_argument("--only", default=",".join(FIGURES), metavar="LIST",
+                    help="figures to make, from %s (default: all); 'none' for none" % ",".join(FIGURES))
     ap.add_argument("--vtk", action="store_true", help="also write the ParaView files")
     ap.add_argument("-o", "--outdir", default=None, help="output folder (default: RUN_DIR/figures)")
     ap.add_argument("--band", type=float, default=None, metavar="MM",
@@ -80,7 +84,7 @@ def parse(argv=None):
     ap.add_argument("--dpi", type=float, default=None, help="resolution of raster figures (default 200)")
     args = ap.parse_args(argv)
     args.only = set() if args.only == "none" else set(args.only.split(","))
-    unknown = args.only - {"shear", "shape", "network"}
+    unknown = args.only - set(FIGURES)
     if unknown:
         ap.error("--only: unknown figure(s) %s" % ", ".join(sorted(unknown)))
     try:
@@ -127,7 +131,7 @@ def process(run, args, several):
         fig, st = shear.figure([run])
         written += style.save(fig, out / "shear", args.format, args.dpi)
         lines.append("S-u, w-u: " + shear.describe(st[0]))
-    for name, module in (("shape", shape), ("network", network)):
+    for name, module in (("shape", shape), ("network", network), ("forces", forces)):
         if name not in args.only:
             continue
         for step in steps_for(run, args.u, "grains" if name == "shape" else "contacts"):

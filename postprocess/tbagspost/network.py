@@ -103,8 +103,8 @@ def figure(run, step, half_band=None):
                        for name in KINDS)
     sec_bag = section.in_xz(g, half) & g.bag
     a_net.plot(g.pos[sec_bag, 0] * 1000, g.pos[sec_bag, 2] * 1000, "o", color="0.6", ms=1.2, zorder=0)
-    a_net.set_title("contact forces, central x-z section $\\pm$%.1f mm ($u$ = %.2f mm)\nshare of the "
-                    "section's normal force: %s (bag-bag in green)" % (half * 1000, u, shares), fontsize=8)
+    a_net.set_title("contact forces, central x-z section $\\pm$%.1f mm ($u$ = %.2f mm), bag-bag in green\n"
+                    "share of the section's normal force: %s" % (half * 1000, u, shares), fontsize=8)
 
     tension = b["tension"]
     bnorm = colors.Normalize(0, max(float(tension[b_sec].max()) if b_sec.any() else 0.0, 1e-12))

@@ -13,7 +13,7 @@ import pytest
 import lmprun
 
 sys.path.insert(0, str(lmprun.ROOT / "postprocess"))
-from tbagspost import cli, dumps, network, section, shape, shear, vtkout  # noqa: E402
+from tbagspost import cli, dumps, forces, network, section, shape, shear, vtkout  # noqa: E402
 from tbagspost.run import Run  # noqa: E402
 
 INPUTS = lmprun.INPUTS
@@ -134,6 +134,27 @@ def test_network_figure_draws_the_contact_forces(run):
     assert np.allclose(taut.get_array(), b["tension"][b_sec & (b["tension"] > 0)])
 
 
+def test_forces_figure_draws_the_papers_three_views(run):
+    """The paper's Fig. 5: the resultant |f| of every contact on sand, from the dump's columns."""
+    step = last(run)
+    fig, st = forces.figure(run, step)
+    g, c = run.grains(step), run.contacts(step)
+    cols, t = table(run.dump("contacts", step))
+    f = np.sqrt(sum(t[:, cols.index(k)] ** 2 for k in ("fn", "ftx", "fty", "ftz")))
+    on_sand = (t[:, cols.index("type1")] == 2) | (t[:, cols.index("type2")] == 2)
+    f = f[on_sand]
+    assert st["n_sand_contacts"] == on_sand.sum() > 0 and st["mean_N"] == pytest.approx(f.mean())
+    mid = network.ends(g, c["id1"], c["id2"])[on_sand].mean(axis=1)
+    centre = np.abs(mid[:, 1] - section.mid_y(g)) <= section.default_half_band(g)
+    a3, a_centre, a_side = fig.axes[:3]
+    # each view draws its contacts' |f|, the strongest last (on top)
+    assert np.allclose(a_centre.collections[0].get_array(), np.sort(f[centre]))
+    assert st["centre_N"] == pytest.approx(f[centre].mean())
+    assert 0 < st["n_side"] == len(a_side.collections[0].get_array()) < len(f)
+    strong = min((f > 2 * f.mean()).sum(), forces.N_3D)
+    assert st["n_3d"] == strong and len(a3.collections[0].get_array()) == strong
+
+
 def test_vtk_files_read_back(run, tmp_path):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
@@ -186,12 +207,12 @@ def test_command_line_writes_everything(run, tmp_path):
     names = sorted(p.name for p in out.iterdir())
     u_first, u_last = run.at_step(run.step_near(0.5)), run.at_step(last(run))
     for name in ("shear.png", "summary.txt", "shape_u%.1fmm.png" % u_first, "shape_u%.1fmm.png" % u_last,
-                 "network_u%.1fmm.png" % u_last, "paraview"):
+                 "network_u%.1fmm.png" % u_last, "forces_u%.1fmm.png" % u_last, "paraview"):
         assert name in names, (name, names)
     assert (out / "paraview" / "particles.pvd").is_file()
     assert (out / "shear.png").stat().st_size > 20000
     summary = (out / "summary.txt").read_text()
-    assert "top plate" in summary and "bond tension max" in summary
+    assert "top plate" in summary and "bond tension max" in summary and "side/centre" in summary
     # several runs: per-run folders and the overlay
     cli.main([str(run.path), str(run.path), "--only", "shear", "-o", str(tmp_path / "two")])
     assert (tmp_path / "two" / "shear-overlay.png").is_file()
