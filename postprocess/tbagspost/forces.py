@@ -61,10 +61,6 @@ def _flat(ax, seg, value, norm, cmap):
     ax.add_collection(col)
 
 
-def _mean(value, mask):
-    return float(value[mask].mean()) if mask.any() else float("nan")
-
-
 def figure(run, step, half_band=None):
     """Figure of the three views at a dump step; returns (Figure, stats)."""
     g, c = run.grains(step), run.contacts(step)
@@ -109,7 +105,7 @@ def figure(run, step, half_band=None):
         _flat(ax, seg[mask], f[mask], norm, cmap)
         section.frame(ax, "$x$ (mm)", xlo, xhi, zmax)
         section.plates(ax, xlo, xhi, z_top)
-        ax.set_title("%s; mean |f| %.3f N" % (title, _mean(f, mask)), fontsize=8)
+        ax.set_title("%s; mean |f| %.3f N" % (title, network._mean(f, mask)), fontsize=8)
         style.panel_label(ax, "(%s)" % "abc"[row])
     a3.text2D(0.0, 0.95, "(a)", transform=a3.transAxes, fontweight="bold")
     cax = fig.add_subplot(grid[1:, 1])
@@ -119,8 +115,8 @@ def figure(run, step, half_band=None):
     bar.ax.tick_params(labelsize=7)
 
     stats = dict(run=run.name, step=step, u_mm=u, n_sand_contacts=len(f), n_3d=len(strong),
-                 mean_N=_mean(f, np.ones(len(f), bool)), p995_N=top,
-                 centre_N=_mean(f, centre), side_N=_mean(f, side), n_centre=int(centre.sum()), n_side=int(side.sum()))
+                 mean_N=network._mean(f, np.ones(len(f), bool)), p995_N=top,
+                 centre_N=network._mean(f, centre), side_N=network._mean(f, side), n_centre=int(centre.sum()), n_side=int(side.sum()))
     stats["side_over_centre"] = stats["side_N"] / stats["centre_N"] if stats["centre_N"] > 0 else float("nan")
     return fig, stats
 
