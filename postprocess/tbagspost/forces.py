@@ -17,7 +17,6 @@ forces "relatively small and uniform" at the centre, "larger" at the edge).
 """
 import numpy as np
 from matplotlib import cm, colors
-from matplotlib.collections import LineCollection
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from scipy.spatial import cKDTree
 
@@ -42,23 +41,11 @@ def bands(g, mid, half):
     """Masks of the contacts (midpoints mid, m) in the centre section and in the side band: within
     2 half of the front wall's surface (the nearest wall particle's centre less its radius), which
     follows the wall where it bulges."""
-    centre = np.abs(mid[:, 1] - section.mid_y(g)) <= half
+    centre = section.near_mid_y(g, mid, half)
     wall = np.flatnonzero(front_wall(g))
     dist, k = cKDTree(g.pos[wall]).query(mid)
     side = dist - g.radius[wall][k] <= 2 * half
     return centre, side
-
-
-def _widths(value, top):
-    return LW[0] + (LW[1] - LW[0]) * np.clip(value / top, 0, 1)
-
-
-def _flat(ax, seg, value, norm, cmap):
-    order = np.argsort(value)    # the strongest drawn last, on top
-    col = LineCollection(seg[order][:, :, [0, 2]] * 1000, linewidths=_widths(value[order], norm.vmax),
-                         cmap=cmap, norm=norm, capstyle="round")
-    col.set_array(value[order])
-    ax.add_collection(col)
 
 
 def figure(run, step, half_band=None):
@@ -80,7 +67,7 @@ def figure(run, step, half_band=None):
     a3 = fig.add_subplot(grid[0, 0], projection="3d")
     strong = np.flatnonzero(f > 2 * f.mean()) if len(f) else np.array([], dtype=int)
     strong = strong[np.argsort(f[strong])][-N_3D:]
-    lines = Line3DCollection(seg[strong] * 1000, linewidths=_widths(f[strong], top) * 0.6, cmap=cmap, norm=norm)
+    lines = Line3DCollection(seg[strong] * 1000, linewidths=section.line_widths(f[strong], top, LW) * 0.6, cmap=cmap, norm=norm)
     lines.set_array(f[strong])
     a3.add_collection3d(lines)
     bag = g.pos[g.bag][::3] * 1000
@@ -102,7 +89,7 @@ def figure(run, step, half_band=None):
              (side, "side: contacts within %.1f mm of the bag's front wall (lowest y)" % (2 * half * 1000)))
     for row, (mask, title) in enumerate(views, start=1):
         ax = fig.add_subplot(grid[row, 0])
-        _flat(ax, seg[mask], f[mask], norm, cmap)
+        section.segments_xz(ax, seg[mask], f[mask], norm, cmap, LW, strongest_last=True)
         section.frame(ax, "$x$ (mm)", xlo, xhi, zmax)
         section.plates(ax, xlo, xhi, z_top)
         ax.set_title("%s; mean |f| %.3f N" % (title, network._mean(f, mask)), fontsize=8)

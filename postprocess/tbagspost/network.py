@@ -22,7 +22,7 @@ from tbagspost import section, style
 
 EDGE = 2 * section.S
 KINDS = {"sand-sand": (2, 2), "bag-sand": (1, 2), "bag-bag": (1, 1)}
-LW_MAX = 3.0
+LW = (0.3, 3.0)  # line width at zero and at the colour scale's top
 
 
 def contact_kind(c):
@@ -47,16 +47,6 @@ def edge_mask(g, mid):
     return dist < EDGE
 
 
-def _lines(ax, seg, value, norm, cmap):
-    """Segments (n, 2, 3) drawn on x-z (mm), width and colour by value."""
-    lw = 0.3 + (LW_MAX - 0.3) * np.clip(value / norm.vmax, 0, 1)
-    col = LineCollection(seg[:, :, [0, 2]] * 1000, linewidths=lw, cmap=cmap, norm=norm,
-                         capstyle="round")
-    col.set_array(value)
-    ax.add_collection(col)
-    return col
-
-
 def _mean(value, mask):
     return float(value[mask].mean()) if mask.any() else float("nan")
 
@@ -75,7 +65,7 @@ def figure(run, step, half_band=None):
     mid = seg.mean(axis=1)
     kind = contact_kind(c)
     fn = c["fn"]
-    in_sec = np.abs(mid[:, 1] - yc) <= half
+    in_sec = section.near_mid_y(g, mid, half)
     bseg = ends(g, b["id1"], b["id2"])
     b_sec = (np.abs(bseg[:, :, 1] - yc) <= section.S / 2).all(axis=1)
 
@@ -92,12 +82,11 @@ def figure(run, step, half_band=None):
     for name, cmap in (("sand-sand", "Blues"), ("bag-sand", "Reds")):
         sel = in_sec & (kind == name)
         cmap = colors.LinearSegmentedColormap.from_list(name, matplotlib.colormaps[cmap](np.linspace(0.3, 1, 64)))
-        _lines(a_net, seg[sel], np.clip(fn[sel], 0, None), norm, cmap)
+        section.segments_xz(a_net, seg[sel], np.clip(fn[sel], 0, None), norm, cmap, LW)
         bars.append((cm.ScalarMappable(norm=norm, cmap=cmap), "%s $f_n$ (N)" % name))
     wall = in_sec & (kind == "bag-bag")
-    lw = 0.3 + (LW_MAX - 0.3) * np.clip(fn[wall] / fmax, 0, 1)
-    a_net.add_collection(LineCollection(seg[wall][:, :, [0, 2]] * 1000, linewidths=lw, colors="tab:green",
-                                        capstyle="round"))
+    a_net.add_collection(LineCollection(seg[wall][:, :, [0, 2]] * 1000, colors="tab:green", capstyle="round",
+                                        linewidths=section.line_widths(fn[wall], fmax, LW)))
     total = max(float(np.clip(fn[in_sec], 0, None).sum()), 1e-12)
     shares = ", ".join("%s %.0f %%" % (name, 100 * np.clip(fn[in_sec & (kind == name)], 0, None).sum() / total)
                        for name in KINDS)
@@ -110,7 +99,7 @@ def figure(run, step, half_band=None):
     bnorm = colors.Normalize(0, max(float(tension[b_sec].max()) if b_sec.any() else 0.0, 1e-12))
     slack = b_sec & (tension <= 0)
     a_bond.add_collection(LineCollection(bseg[slack][:, :, [0, 2]] * 1000, colors="0.7", linewidths=0.4))
-    _lines(a_bond, bseg[b_sec & ~slack], tension[b_sec & ~slack], bnorm, cm.plasma)
+    section.segments_xz(a_bond, bseg[b_sec & ~slack], tension[b_sec & ~slack], bnorm, cm.plasma, LW)
     bars.append((cm.ScalarMappable(norm=bnorm, cmap=cm.plasma), "bond tension (N)"))
     a_bond.set_title("bond tension along the bag, central x-z section (slack bonds grey)")
     for ax in (a_net, a_bond):

@@ -1,4 +1,4 @@
-"""Geometry shared by the shape and network figures: the central cross-sections of the bag,
+"""Geometry shared by the shape, network and forces figures: the central cross-sections of the bag,
 particles drawn at their true size, the two plates.
 
 Axes: x is the shear direction (the top plate moves +x), z is vertical; the bottom plate is the
@@ -8,7 +8,7 @@ keeps particles whose filled-state x (x - dx) lies within the band around the ba
 x, so it follows the same material slice while the bag is sheared.
 """
 import numpy as np
-from matplotlib.collections import EllipseCollection
+from matplotlib.collections import EllipseCollection, LineCollection
 
 S = 0.005          # m, bag grid spacing (in.bag)
 Z_BOTTOM = -S / 2  # m, the bottom plate
@@ -32,9 +32,14 @@ def mid_x0(g):
     return 0.5 * (x0.min() + x0.max())
 
 
+def near_mid_y(g, points, half):
+    """Mask of the points (n, 3; m) within half of the bag's mid-plane in y."""
+    return np.abs(points[:, 1] - mid_y(g)) <= half
+
+
 def in_xz(g, half):
     """Mask of the particles in the central x-z section (|y - mid| <= half)."""
-    return np.abs(g.pos[:, 1] - mid_y(g)) <= half
+    return near_mid_y(g, g.pos, half)
 
 
 def in_yz(g, half):
@@ -48,6 +53,24 @@ def circles(ax, centres, radius, **kw):
     d = 2 * np.asarray(radius)
     col = EllipseCollection(d, d, np.zeros_like(d), units="xy", offsets=centres,
                             offset_transform=ax.transData, **kw)
+    ax.add_collection(col)
+    return col
+
+
+def line_widths(value, top, widths):
+    """Line widths from widths[0] at value 0 to widths[1] at value top and above."""
+    return widths[0] + (widths[1] - widths[0]) * np.clip(value / top, 0, 1)
+
+
+def segments_xz(ax, seg, value, norm, cmap, widths, strongest_last=False):
+    """Segments (n, 2, 3; m) drawn on x-z in mm, coloured by value and from widths[0] to widths[1]
+    points wide as value goes from 0 to the colour scale's top; strongest_last: in order of value."""
+    if strongest_last:
+        order = np.argsort(value)
+        seg, value = seg[order], value[order]
+    col = LineCollection(seg[:, :, [0, 2]] * 1000, linewidths=line_widths(value, norm.vmax, widths),
+                         cmap=cmap, norm=norm, capstyle="round")
+    col.set_array(value)
     ax.add_collection(col)
     return col
 
