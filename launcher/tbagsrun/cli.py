@@ -28,7 +28,8 @@ without --resume, or with --resume and other -var values, it is refused before a
 --overwrite: empty the output folder first and start again (never a folder ./tbags did not make).
 --loads F1960,F3730: only these of the preset's runs (by folder), their compression still the one
 shared with all its loads: one load of the paper bag per job; a later call with other loads adds
-them to the same folder (its bag, fill and shared compression reused).
+them to the same folder (its bag, fill and shared compression reused). The paper preset's cost
+estimate is then left out (it would cost each job about 30 min; --estimate makes one).
 --progress SECONDS: a stage's progress on the console, at least this often and 10 % of the stage
 apart, whichever is later, and every 10 min in a slower stage (% done and the time left measured
 from the stage's rate; default 30, 0 for none).

@@ -120,7 +120,8 @@ PRESETS = {p.name: p for p in (
     Preset("paper", "paper", PAPER_BAG, per_load("shear", v=0.004, ufinal=0.015), False, "figures",
            realizations=False, estimate=True, defaults_said=PAPER_FABRIC,
            help="the full 81 x 81 x 17 bag (17,922 particles, 35,840 bonds, 97,130 grains) at the three "
-                "loads, 4 mm/s (the paper's speed, kept by the rate study: results/rate/) to u = 15 mm: days of CPU, run it with MPI on a cluster. It first "
+                "loads, 4 mm/s (the paper's speed, kept by the rate study: results/rate/) to u = 15 mm: about 7 h a load on 2 cores (2.5 million steps; --loads F1960 runs one load per "
+                "job and makes no estimate). Without --loads it first "
                 "makes its bag and fill, compresses and shears them to a checkpoint, times a short "
                 "stretch from it at 1, 2 and N ranks, counts LAMMPS's decomposition at 4-64 ranks "
                 "and prints the projected time and the scaling model (about an hour on 2 cores, "

@@ -139,6 +139,19 @@ def estimate_load(preset, user):
     return {k: first[k] for k in ("Fpaper", "Fv") if k in first and k not in user}
 
 
+def skip_estimate(preset, runs, resume, estimate_only):
+    """Why a preset with an estimate (paper) makes none in this call, or "": not when --loads picks
+    its loads (one per job: the estimate's own compression and timing cost about 30 min of each
+    job), nor when --resume finds every run past its start."""
+    if not preset.estimate or estimate_only:
+        return ""
+    if preset.compress_runs:
+        return "--loads %s" % ",".join(r.folder for r in preset.runs)
+    if resume and past_start(runs):
+        return "every run continues from its checkpoint (or finished)"
+    return ""
+
+
 def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizations=False,
                engine="lammps", resume=False, overwrite=False, decided=False):
     """One realization of a preset into `out`; user: the -var values given (they win); engine:
@@ -155,9 +168,10 @@ def run_preset(preset, ranks, out, user, say, estimate_only=False, in_realizatio
     guard.make(out)
     (bag, fill, *part), runs = [s for s in stages if s.product], [s for s in stages if not s.product]
     part_stage = part and (part[0].folder, part[0].deck, ranks, part[0].variables, say, part[0].product)
-    if preset.estimate and resume and not estimate_only and past_start(runs):
-        say("tbags shear %s: every run continues from its checkpoint (or finished): no estimate "
-            "made (./tbags shear paper --estimate makes one)" % preset.name)
+    why_not = skip_estimate(preset, runs, resume, estimate_only)
+    if why_not:
+        say("tbags shear %s: %s: no estimate made (./tbags shear %s --estimate makes one)"
+            % (preset.name, why_not, preset.name))
     elif preset.estimate:
         estimate_paper(out, fill_vars, ranks, say, part_stage, resume and not estimate_only,
                        estimate_load(preset, user))

@@ -164,3 +164,22 @@ def test_past_start_when_every_run_finished_or_has_a_checkpoint(tmp_path):
     assert not resume.past_start(runs)    # F3730 has neither
     (runs[1].folder / "screen.shear.txt").write_text("SHEARED: u 15 mm\n")
     assert resume.past_start(runs)
+
+
+def test_paper_loads_one_per_job_make_no_estimate(tmp_path):
+    """The paper preset's estimate (its own compression and timing, about 30 min on the paper bag)
+    is made by the whole preset and by --estimate, not by each --loads job, and not by a --resume
+    that finds every run past its start."""
+    from types import SimpleNamespace
+    from tbagsrun.presets import PRESETS
+    from tbagsrun.shear import skip_estimate
+    paper = PRESETS["paper"]
+    runs = [SimpleNamespace(folder=tmp_path / "F5500", deck="shear")]
+    runs[0].folder.mkdir()
+    assert skip_estimate(paper, runs, False, False) == ""
+    assert skip_estimate(paper.only({"F5500"}), runs, False, False) == "--loads F5500"
+    assert skip_estimate(paper.only({"F5500"}), runs, False, True) == ""    # --estimate --loads F5500
+    assert skip_estimate(paper, runs, True, False) == ""                    # resumed, not past its start
+    touch(runs[0].folder / "shear.restart.2")
+    assert "checkpoint" in skip_estimate(paper, runs, True, False)
+    assert skip_estimate(PRESETS["trends"], runs, False, False) == ""        # no estimate to skip
