@@ -10,6 +10,7 @@ Decks find the repository's files through ${tbags}, which the runner sets to rep
 import hashlib
 import os
 import subprocess
+import tempfile
 from pathlib import Path
 
 from . import ROOT, LaunchError
@@ -127,6 +128,13 @@ def quick_start(env):
     return env
 
 
+# Open MPI 4.1's isolated singletons are all job [0,1] and share one session directory
+# (<tmp>/ompi.<host>.<uid>/jf.0): one that ends removes it while another starts, which then stops
+# in orte_init ("A call to mkdir was unable to create the desired directory", session_dir.c line
+# 107). Measured: 4 of 300 staggered 1-rank starts failed so, 0 of 300 with a directory each.
+SESSION_BASE = "OMPI_MCA_orte_tmpdir_base"
+
+
 def run(deck, workdir, ranks=1, variables=None, args=(), log="log.lammps", screen=None,
         timeout=None, plugin=True, engine="lammps"):
     """Run `deck` (a path) in `workdir` (made if missing) and return its Result, unchecked.
@@ -141,13 +149,15 @@ def run(deck, workdir, ranks=1, variables=None, args=(), log="log.lammps", scree
         env.pop("LAMMPS_PLUGIN_PATH", None)
     elif plugin is not True:
         env["LAMMPS_PLUGIN_PATH"] = str(plugin)
-    if screen is None:
-        # (an engine may print stray bytes, e.g. LIGGGHTS after some errors: never a decode error)
-        proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True,
-                              errors="replace", timeout=timeout)
-        return Result(proc.returncode, proc.stdout + proc.stderr, workdir)
-    screen = workdir / screen
-    with open(screen, "w") as out:
-        proc = subprocess.run(cmd, cwd=workdir, env=env, stdout=out, stderr=subprocess.STDOUT,
-                              timeout=timeout)
+    with tempfile.TemporaryDirectory(prefix="tbags-mpi.") as session:
+        env.setdefault(SESSION_BASE, session)    # the run's own Open MPI session directory
+        if screen is None:
+            # (an engine may print stray bytes, e.g. LIGGGHTS after some errors: never a decode error)
+            proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True,
+                                  errors="replace", timeout=timeout)
+            return Result(proc.returncode, proc.stdout + proc.stderr, workdir)
+        screen = workdir / screen
+        with open(screen, "w") as out:
+            proc = subprocess.run(cmd, cwd=workdir, env=env, stdout=out, stderr=subprocess.STDOUT,
+                                  timeout=timeout)
     return Result(proc.returncode, screen.read_text(errors="replace"), workdir)
