@@ -3,10 +3,13 @@ singletons share one (<tmp>/ompi.<host>.<uid>/jf.0), and one that ends removes i
 that starts (4 of 300 staggered 1-rank starts failed in orte_init on this machine)."""
 import os
 import stat
+import sys
+from pathlib import Path
 
 import pytest
 
-from tbagsrun import lammps
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "launcher"))
+from tbagsrun import lammps  # noqa: E402
 
 FAKE = """#!/bin/sh
 # stands for lmp: reports the session base it was given and whether it exists
