@@ -7,13 +7,15 @@ committed state restores (states/*/manifest.json: the fill, the shared compressi
 of a run's two checkpoints (resume.checkpoints tries the newer first), the shared compression's
 own checkpoints, the estimate's folder (a --resume whose loads all have a checkpoint makes
 none), and the files whose names match a --drop pattern (e.g. the dumps between the ones a study
-needs, when the package would pass the limit: --drop 'dump.*.519670'). Tar keeps the files'
-modification times, which resume.checkpoints orders by.
+needs, when the package would pass the limit: --drop 'dump.*.519670'; refused while a dropped
+contact dump's load path is not kept in loadpath.kept.json: tbagspost.loadpath keep RUN). Tar
+keeps the files' modification times, which resume.checkpoints orders by.
 
   /usr/bin/python3 -m tbagsrun.wip pack FOLDER NAME [--drop PATTERN ...]   (states/wip/NAME.tar.xz)
   /usr/bin/python3 -m tbagsrun.wip unpack NAME FOLDER
 """
 import fnmatch
+import json
 import sys
 import tarfile
 from pathlib import Path
@@ -24,6 +26,7 @@ from .stages import MARKER
 WIP = states.STATES / "wip"
 LIMIT = 50e6
 SKIP_DIRS = ("estimate",)
+KEPT = "loadpath.kept.json"    # tbagspost.loadpath.KEPT: the load path of the dumps, by step
 
 
 def restorable(folder, states_root=None):
@@ -54,11 +57,31 @@ def members(folder, states_root=None, drop=()):
     return keep
 
 
+def unkept(folder, drop):
+    """The contact dumps a --drop pattern leaves out whose load path is not kept beside them
+    (tbagspost.loadpath keep: loadpath.kept.json), as paths; a run's load path needs every dump."""
+    out = []
+    for f in sorted(Path(folder).rglob("dump.contacts.*")):
+        if not any(fnmatch.fnmatchcase(f.name, d) for d in drop):
+            continue
+        kept = f.parent / KEPT
+        steps = json.loads(kept.read_text()) if kept.is_file() else {}
+        if f.suffix[1:] not in steps:
+            out.append(f)
+    return out
+
+
 def pack(folder, name, root=None, limit=LIMIT, states_root=None, drop=()):
-    """states/wip/NAME.tar.xz of folder's members; refused over `limit` bytes (removed)."""
+    """states/wip/NAME.tar.xz of folder's members; refused over `limit` bytes (removed), and when
+    it would drop contact dumps whose load path is not kept."""
     folder = Path(folder)
     if not (folder / MARKER).is_file():
         raise LaunchError("wip: %s is not a run folder of ./tbags (no .tbags-run)" % folder)
+    lost = unkept(folder, drop)
+    if lost:
+        raise LaunchError("wip: --drop would lose the load path of %s (and %d more): keep it first: "
+                          "cd postprocess && /usr/bin/python3 -m tbagspost.loadpath keep %s"
+                          % (lost[0], len(lost) - 1, " ".join(sorted({str(p.parent.resolve()) for p in lost}))))
     target = Path(root or WIP) / (name + ".tar.xz")
     target.parent.mkdir(parents=True, exist_ok=True)
     with tarfile.open(target, "w:xz", preset=9) as tar:

@@ -11,12 +11,14 @@ bond dump's fbx fby fbz (the bond's whole force on its atom of lower id; inputs/
 fabric study); without them the bonds are left out and their share is the remainder. A sandbag
 whose sand is loaded shows most of F_v in sand contacts.
 """
+import json
 from collections import OrderedDict
 
 import numpy as np
 
 SPACING = 0.005    # m, the bag grid
 CLASSES = ("sand-sand", "bag-sand", "bag-bag", "bonds")
+KEPT = "loadpath.kept.json"    # the load path of dump steps whose dumps may be dropped (keep())
 
 
 def mid_plane(g):
@@ -88,9 +90,42 @@ def at_step(run, step):
     return through_plane(run.grains(step), run.contacts(step), b=b)
 
 
+def kept(run):
+    """{step: through_plane result} kept in the run's KEPT file (keep()), or {}."""
+    path = run.path / KEPT
+    if not path.is_file():
+        return {}
+    return {int(step): OrderedDict((k, tuple(v) if isinstance(v, list) else v) for k, v in r)
+            for step, r in json.loads(path.read_text()).items()}
+
+
+def keep(run):
+    """Write at_step() of every dump step of the run, with those kept before, to its KEPT file, so
+    that the dumps can be dropped (a run carried between machines, states/README.md) and the load
+    path still has their rows; returns the steps kept."""
+    rows = by_step(run)
+    (run.path / KEPT).write_text(json.dumps({str(s): list(r.items()) for s, r in rows.items()}) + "\n")
+    return list(rows)
+
+
 def by_step(run):
-    """at_step() of every dump step of a shear run, in order."""
-    return OrderedDict((step, at_step(run, step)) for step in run.steps("contacts"))
+    """at_step() of every dump step of a shear run, in order; the kept rows (keep()) of steps
+    whose dumps are gone."""
+    rows = kept(run)
+    rows.update((step, at_step(run, step)) for step in run.steps("contacts"))
+    return OrderedDict((step, rows[step]) for step in sorted(rows))
+
+
+def main(argv=None):
+    """python3 -m tbagspost.loadpath keep RUN_DIR ...: keep() of each run."""
+    import sys
+    from .run import Run
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) < 2 or argv[0] != "keep":
+        raise SystemExit("usage: python3 -m tbagspost.loadpath keep RUN_DIR ...")
+    for d in argv[1:]:
+        steps = keep(Run(d))
+        print("%s: the load path of %d dump steps kept in %s" % (d, len(steps), KEPT))
 
 
 def table(run, found=None):
@@ -116,3 +151,7 @@ def write_csv(rows, path):
     lines = [",".join(rows[0])] + [",".join("%.4f" % v for v in r.values()) for r in rows]
     path.write_text("# the load path across the bag's mid-height at each dump (tbagspost.loadpath): "
                     "compressive vertical Fz and x force Fx on the part below, N\n" + "\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()

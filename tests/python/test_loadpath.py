@@ -50,3 +50,24 @@ def test_forces_through_the_plane_by_class():
     assert r["Fz"] == pytest.approx(12.0) and r["Fx"] == pytest.approx(1.0)
     line = loadpath.describe(r, S=10.0)
     assert "sand-sand 25 %" in line and "bag-bag 75 %" in line and "horizontal 1 N" in line
+
+
+def test_kept_rows_stand_for_dropped_dumps(tmp_path, monkeypatch):
+    """keep() writes the load path of every dump step; once some dumps are dropped (a run carried
+    between machines), by_step() still gives their rows, equal to what the dumps gave, and a dump
+    that exists wins over its kept row."""
+    from types import SimpleNamespace
+    g, c = bag_and_contacts()
+    dumps = {0: (g, c), 10: bag_and_contacts(wall_force=5.0)}
+    run = SimpleNamespace(path=tmp_path, steps=lambda kind: sorted(dumps))
+    monkeypatch.setattr(loadpath, "at_step", lambda r, step: loadpath.through_plane(*dumps[step]))
+    before = loadpath.by_step(run)
+    assert loadpath.keep(run) == [0, 10]
+    del dumps[0]                                    # its dumps dropped
+    after = loadpath.by_step(run)
+    assert list(after) == [0, 10] and after[0] == before[0] and after[10] == before[10]
+    dumps[20] = bag_and_contacts(sand_force=7.0)    # a later dump, not kept: computed
+    dumps[10] = bag_and_contacts(wall_force=1.0)    # a dump present wins over its kept row
+    again = loadpath.by_step(run)
+    assert list(again) == [0, 10, 20] and again[10]["bag-bag"][0] == pytest.approx(1.0)
+    assert loadpath.keep(run) == [0, 10, 20]        # kept rows stay kept

@@ -69,3 +69,24 @@ def test_drop_patterns_and_a_run_with_only_its_second_checkpoint(tmp_path):
     got = {str(p) for p in wip.members(f, st, drop=["dump.*.519670"])}
     assert got == {MARKER, ".fill.vars", "F1960/.shear.vars", "F1960/shear.csv", "F1960/shear.restart.2",
                    "F1960/dump.grains.353000"}
+
+
+def test_dropped_contact_dumps_need_their_load_path_kept(tmp_path):
+    """--drop of a contact dump is refused until tbagspost.loadpath keep has kept its load path
+    (loadpath.kept.json beside it): the finished run's load path needs every dump step."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+    from tbagspost import loadpath
+    assert wip.KEPT == loadpath.KEPT
+    f, st = run_folder(tmp_path)
+    for step in (353000, 519670):
+        (f / "F1960" / ("dump.contacts.%d" % step)).write_text("dump")
+    drop = ["dump.*.353000", "dump.*.519670"]
+    with pytest.raises(LaunchError, match="tbagspost.loadpath keep .*F1960"):
+        wip.pack(f, "p", root=tmp_path / "wip", states_root=st, drop=drop)
+    (f / "F1960" / wip.KEPT).write_text('{"353000": []}')
+    with pytest.raises(LaunchError, match="519670"):
+        wip.pack(f, "p", root=tmp_path / "wip", states_root=st, drop=drop)
+    (f / "F1960" / wip.KEPT).write_text('{"353000": [], "519670": []}')
+    target, _ = wip.pack(f, "p", root=tmp_path / "wip", states_root=st, drop=drop)
+    assert target.is_file()
+    assert wip.pack(f, "q", root=tmp_path / "wip", states_root=st, drop=["dump.grains.*"])[0].is_file()
