@@ -60,15 +60,12 @@ def members(folder, states_root=None, drop=()):
 def unkept(folder, drop):
     """The contact dumps a --drop pattern leaves out whose load path is not kept beside them
     (tbagspost.loadpath keep: loadpath.kept.json), as paths; a run's load path needs every dump."""
-    out = []
-    for f in sorted(Path(folder).rglob("dump.contacts.*")):
-        if not any(fnmatch.fnmatchcase(f.name, d) for d in drop):
-            continue
-        kept = f.parent / KEPT
-        steps = json.loads(kept.read_text()) if kept.is_file() else {}
-        if f.suffix[1:] not in steps:
-            out.append(f)
-    return out
+    dropped = [f for f in sorted(Path(folder).rglob("dump.contacts.*"))
+               if any(fnmatch.fnmatchcase(f.name, d) for d in drop)]
+    kept = {}    # run folder -> its kept steps, read once
+    for run in {f.parent for f in dropped}:
+        kept[run] = json.loads((run / KEPT).read_text()) if (run / KEPT).is_file() else {}
+    return [f for f in dropped if f.suffix[1:] not in kept[f.parent]]
 
 
 def pack(folder, name, root=None, limit=LIMIT, states_root=None, drop=()):

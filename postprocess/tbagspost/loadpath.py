@@ -12,9 +12,12 @@ fabric study); without them the bonds are left out and their share is the remain
 whose sand is loaded shows most of F_v in sand contacts.
 """
 import json
+import sys
 from collections import OrderedDict
 
 import numpy as np
+
+from .run import Run
 
 SPACING = 0.005    # m, the bag grid
 CLASSES = ("sand-sand", "bag-sand", "bag-bag", "bonds")
@@ -118,8 +121,6 @@ def by_step(run):
 
 def main(argv=None):
     """python3 -m tbagspost.loadpath keep RUN_DIR ...: keep() of each run."""
-    import sys
-    from .run import Run
     argv = sys.argv[1:] if argv is None else argv
     if len(argv) < 2 or argv[0] != "keep":
         raise SystemExit("usage: python3 -m tbagspost.loadpath keep RUN_DIR ...")
