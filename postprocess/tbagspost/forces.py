@@ -21,6 +21,7 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from scipy.spatial import cKDTree
 
 from tbagspost import network, section, style
+from tbagspost.section import masked_mean
 
 N_3D = 20000     # most lines drawn in the 3D view (a figure that opens in a second)
 LW = (0.2, 2.0)  # line width at zero and at the colour scale's top
@@ -92,7 +93,7 @@ def figure(run, step, half_band=None):
         section.segments_xz(ax, seg[mask], f[mask], norm, cmap, LW, strongest_last=True)
         section.frame(ax, "$x$ (mm)", xlo, xhi, zmax)
         section.plates(ax, xlo, xhi, z_top)
-        ax.set_title("%s; mean |f| %.3f N" % (title, network._mean(f, mask)), fontsize=8)
+        ax.set_title("%s; mean |f| %.3f N" % (title, masked_mean(f, mask)), fontsize=8)
         style.panel_label(ax, "(%s)" % "abc"[row])
     a3.text2D(0.0, 0.95, "(a)", transform=a3.transAxes, fontweight="bold")
     cax = fig.add_subplot(grid[1:, 1])
@@ -102,8 +103,9 @@ def figure(run, step, half_band=None):
     bar.ax.tick_params(labelsize=7)
 
     stats = dict(run=run.name, step=step, u_mm=u, n_sand_contacts=len(f), n_3d=len(strong),
-                 mean_N=network._mean(f, np.ones(len(f), bool)), p995_N=top,
-                 centre_N=network._mean(f, centre), side_N=network._mean(f, side), n_centre=int(centre.sum()), n_side=int(side.sum()))
+                 mean_N=masked_mean(f, np.ones(len(f), bool)), p995_N=top,
+                 centre_N=masked_mean(f, centre), side_N=masked_mean(f, side),
+                 n_centre=int(centre.sum()), n_side=int(side.sum()))
     stats["side_over_centre"] = stats["side_N"] / stats["centre_N"] if stats["centre_N"] > 0 else float("nan")
     return fig, stats
 

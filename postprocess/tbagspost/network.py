@@ -19,6 +19,7 @@ from matplotlib import cm, colors
 from matplotlib.collections import LineCollection
 
 from tbagspost import section, style
+from tbagspost.section import masked_mean
 
 EDGE = 2 * section.S
 KINDS = {"sand-sand": (2, 2), "bag-sand": (1, 2), "bag-bag": (1, 1)}
@@ -45,10 +46,6 @@ def edge_mask(g, mid):
     lo, hi = p[:, :2].min(axis=0), p[:, :2].max(axis=0)
     dist = np.minimum(mid[:, :2] - lo, hi - mid[:, :2]).min(axis=1)
     return dist < EDGE
-
-
-def _mean(value, mask):
-    return float(value[mask].mean()) if mask.any() else float("nan")
 
 
 def figure(run, step, half_band=None):
@@ -134,11 +131,12 @@ def figure(run, step, half_band=None):
     stats = dict(run=run.name, step=step, u_mm=u, n_contacts=len(fn), n_section=int(shown.sum()),
                  fn_max_N=float(fn[with_sand].max()) if with_sand.any() else 0.0,
                  fn_max_bagbag_N=float(fn[~with_sand].max()) if (~with_sand).any() else 0.0,
-                 fn_edge_N=_mean(fn, ss & edge), fn_centre_N=_mean(fn, ss & ~edge),
-                 fn_edge_sec_N=_mean(fn, ss & edge & in_sec), fn_centre_sec_N=_mean(fn, ss & ~edge & in_sec),
-                 fn_bag_sand_N=_mean(fn, kind == "bag-sand"),
+                 fn_edge_N=masked_mean(fn, ss & edge), fn_centre_N=masked_mean(fn, ss & ~edge),
+                 fn_edge_sec_N=masked_mean(fn, ss & edge & in_sec),
+                 fn_centre_sec_N=masked_mean(fn, ss & ~edge & in_sec),
+                 fn_bag_sand_N=masked_mean(fn, kind == "bag-sand"),
                  tension_max_N=float(tension.max()) if len(tension) else 0.0,
-                 tension_mean_N=_mean(tension, tension > 0), slack=float((tension <= 0).mean()) if len(tension) else 0.0)
+                 tension_mean_N=masked_mean(tension, tension > 0), slack=float((tension <= 0).mean()) if len(tension) else 0.0)
     return fig, stats
 
 

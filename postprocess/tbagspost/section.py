@@ -57,6 +57,11 @@ def circles(ax, centres, radius, **kw):
     return col
 
 
+def masked_mean(value, mask):
+    """Mean of value where mask holds; nan where it holds nowhere (an empty band of contacts)."""
+    return float(value[mask].mean()) if mask.any() else float("nan")
+
+
 def line_widths(value, top, widths):
     """Line widths from widths[0] at value 0 to widths[1] at value top and above."""
     return widths[0] + (widths[1] - widths[0]) * np.clip(value / top, 0, 1)
