@@ -29,6 +29,9 @@ PAPER_BAG = dict(nx=81, ny=81, nz=17)
 PAPER_SPEED = 0.004
 RATE_SPEED = PAPER_SPEED * (TRENDS_BAG["nz"] - 2) / (PAPER_BAG["nz"] - 2)
 RATE_MULTIPLES = (1, 2, 4, 8)
+# the protocol study: the top plate's speed limit while compressing (between_plates.lmp's
+# vmax_compress, 0.02 m/s by default), at the highest load (the longest compression)
+PROTOCOL_VMAX = (0.02, 0.05, 0.1, 0.2)
 
 
 @dataclass(frozen=True)
@@ -46,7 +49,7 @@ class Preset:
     runs: tuple
     side_by_side: bool               # the runs at once, the ranks shared among them
     post: str                        # "figures" (S-u, shape, network, ParaView), "cyclic", "stack"
-    check: str = ""                  # "trends", "speed" (tbagspost/check_trends.py), "rate" (tbagspost/rate.py)
+    check: str = ""                  # "trends", "speed" (tbagspost/check_trends.py), "rate", "protocol" (tbagspost/)
     defaults_said: dict = field(default_factory=dict)    # variable -> line printed when it is the preset's
     realizations: bool = True        # --realizations offered (not for runs of hours or days)
     estimate: bool = False           # measures a short stretch first and projects the time
@@ -94,6 +97,18 @@ PRESETS = {p.name: p for p in (
                 "with --realizations 3 (about 3 h on 2 cores: 54 min a fill, bound by the slowest speed's 2.5 million steps) tbagspost/rate.py compares each speed "
                 "with the slowest against the realizations' spread and names the fastest within it "
                 "(rate.md). -> runs/rate/"),
+    Preset("protocol", "protocol", TRENDS_BAG,
+           tuple(Run("V%d" % round(1000 * vm), "shear", dict(Fpaper=5500, v=0.01, ufinal=0.001, vmax_compress=vm))
+                 for vm in PROTOCOL_VMAX),
+           True, "figures", check="protocol", defaults_said=PAPER_FABRIC,
+           help="the compression's protocol: the trends bag at 5.50 kN (the longest compression) "
+                "compressed with the top plate's speed limit at 20 (the decks' default), 50, 100 and "
+                "200 mm/s, side by side, each held at F_v and sheared to 1 mm at 10 mm/s; with "
+                "--realizations 3 tbagspost/protocol.py compares each with the slowest (w at F_v, paired "
+                "by fill, also as a void ratio; F_v; S-u and w-u) against the fills' spread and names the "
+                "fastest within it (protocol.md). The fill's settling: the same with -var nsettle 10000 "
+                "-var settle_chunk 5000 --loads V20 --out runs/protocol-fill, then "
+                "python3 -m tbagspost.protocol runs/protocol --fill runs/protocol-fill. -> runs/protocol/"),
     Preset("cyclic", "cyclic", DEMO_BAG, per_load("cyclic"), True, "cyclic", realizations=False,
            fabrics=DESIGN_FABRICS,
            help="the demo bag at the three loads' stresses (side by side), cycled with F_v held: "

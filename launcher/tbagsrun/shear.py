@@ -237,16 +237,19 @@ def post_process(preset, out, say, engine="lammps"):
                 say(line)
 
 
-def rate_study(out, say):
-    """tbagspost.rate over the speed folders of out (its realizations' or its own)."""
-    if not run_module("rate", [out], say)[0]:
-        raise LaunchError("rate: the study failed (above)")
+STUDIES = ("rate", "protocol")    # checks that compare a preset's runs over its realizations
+
+
+def study(preset, out, say):
+    """tbagspost.rate or .protocol over the variant folders of out (its realizations' or its own)."""
+    if not run_module(preset.check, [out], say)[0]:
+        raise LaunchError("%s: the study failed (above)" % preset.check)
 
 
 def check(preset, out, say, in_realizations):
-    if preset.check == "rate":    # over the realizations when there are several
+    if preset.check in STUDIES:    # over the realizations when there are several
         if not in_realizations:
-            rate_study(out, say)
+            study(preset, out, say)
         return
     if not preset.check:
         return
@@ -303,8 +306,8 @@ def run_realizations(preset, n, seed, ranks, out, user, say, engine="lammps", re
         raise LaunchError("%s\nshear: the realizations' summary failed" % err.strip())
     say("tbags shear %s: %d realizations done in %d s; spread in %s/realizations/"
         % (preset.name, n, time.time() - t0, out))
-    if preset.check == "rate":
-        rate_study(out, say)
+    if preset.check in STUDIES:
+        study(preset, out, say)
     if preset.check == "trends":
         ok, text = run_module("check_trends", [out], say)
         (out / "realizations" / "check.txt").write_text(text)

@@ -16,6 +16,8 @@ Modules, one job each:
   bounds    the S/F_v the sand alone can give, from its triaxial friction angle
   fabric    what the fabric carries alone (./tbags fabric)
   realizations  several realizations of one test: mean curves, spread of the reported figures
+  rate      the rate study: speeds against the slowest, within the realizations' spread
+  protocol  the protocol study: the compression's approach speed and the fill's settling
   height    the height study: bags of one ratio at equal shear strain u/H against the tallest
   hysteresis  loop measures (K_eq, W_d, h_eq), Ramberg-Osgood and Masing, the fit
   cyclic    cyclic runs (inputs/in.cyclic): cycles, table, R-O fit per load, figures, report

@@ -49,8 +49,24 @@ def test_loads_of_one_fill_share_their_compression():
         assert shared_compression(PRESETS[name], {"restart": "x"}, "lammps") is None
         assert shared_compression(PRESETS[name], {"compress_to": "0"}, "lammps") is None
         assert shared_compression(PRESETS[name], {"compress_to": "0.5"}, "lammps").variables["compress_to"] == 0.5
-    for name in ("demo", "quasistatic", "stack"):
+    for name in ("demo", "quasistatic", "stack", "protocol"):
         assert shared_compression(PRESETS[name], {}, "lammps") is None, name
+
+
+def test_the_protocol_study_compresses_each_run_at_its_own_speed_limit(monkeypatch):
+    """./tbags shear protocol: one run per approach speed (V<mm/s>), the deck's default first (the
+    study's reference), each at the highest load, and tbagspost.protocol compares them."""
+    from tbagsrun import shear
+    p = PRESETS["protocol"]
+    assert [r.folder for r in p.runs] == ["V20", "V50", "V100", "V200"]
+    assert {r.variables["Fpaper"] for r in p.runs} == {max(LOADS)}
+    assert [r.variables["vmax_compress"] for r in p.runs] == [0.02, 0.05, 0.1, 0.2]
+    deck = (ROOT / "inputs" / "between_plates.lmp").read_text()
+    assert "variable        vmax_compress index 0.02" in deck
+    called = []
+    monkeypatch.setattr(shear, "run_module", lambda name, args, say: called.append((name, args)) or (True, ""))
+    shear.check(p, Path("out"), print, in_realizations=False)
+    assert called == [("protocol", [Path("out")])]
 
 
 
