@@ -29,7 +29,7 @@ import numpy as np
 
 from . import rms
 from .dumps import read_contacts, read_grains    # the project's dump readers
-from .run import bag_size, log_timestep
+from .run import bag_size, shear_timestep
 
 LOADS = (5500, 3730, 1960)
 RISE, W_MIN, DETACH, EDGE = 1.1, 0.001, 0.10, 1.2
@@ -52,13 +52,6 @@ def last_dump(run, kind):
     return files[-1], int(files[-1].suffix[1:])
 
 
-def timestep(run):
-    dt = log_timestep(Path(run) / "log.shear")
-    if dt is None:
-        raise SystemExit("check_trends: no TIMESTEP line in %s/log.shear" % run)
-    return dt
-
-
 def w_path(d):
     """contraction (w0 - w_min, mm), dilatancy (w_end - w_min, mm), u at w_min (mm)."""
     w = d["w_mm"] - d["w_mm"][0]
@@ -71,7 +64,7 @@ def detachment(run, gap_mm=0.5):
     path, step = last_dump(run, "grains")
     g = read_grains(path)
     d = read_csv(run)
-    zplate = np.interp(step * timestep(run), d["time_s"], d["zplate_mm"]) / 1000
+    zplate = np.interp(step * shear_timestep(run), d["time_s"], d["zplate_mm"]) / 1000
     z = g.pos[:, 2]
     z0 = z - g.disp[:, 2]
     top = g.bag & (z0 > z0[g.bag].max() - 1e-3)

@@ -34,7 +34,7 @@ from . import fail
 from .check_trends import realizations
 from .rate import compare
 from .realizations import mean_curves
-from .run import log_timestep, read_csv
+from .run import read_csv, shear_timestep
 
 U_FROM = 0.1       # mm: the curves' comparison starts past the plate's start-up
 FV_TOL = 0.001     # F_v held within 0.1 % of its target (the servo's own tolerance while shearing)
@@ -63,9 +63,7 @@ def fill_state(realization):
 def compressed_state(run):
     """A run's compression: steps, w at F_v (mm), target F_v and the mean F_v while shearing (N)."""
     d = read_csv(Path(run) / "shear.csv")
-    dt = log_timestep(Path(run) / "log.shear")
-    if dt is None:
-        fail("protocol: no TIMESTEP line in %s/log.shear" % run)
+    dt = shear_timestep(run)
     target = float(_search(COMPRESSED_LINE, Path(run) / "log.shear", "COMPRESSED").group(2))
     shearing = d["u_mm"] > 0
     return dict(steps=int(round(d["time_s"][0] / dt)), w=float(d["w_mm"][0]), target=target,

@@ -28,6 +28,14 @@ def log_timestep(path):
     return float(m.group(1)) if m else None
 
 
+def shear_timestep(run):
+    """The time step of a shear run's log.shear; stops with one line when it has none."""
+    dt = log_timestep(Path(run) / "log.shear")
+    if dt is None:
+        fail("no TIMESTEP line in %s/log.shear (the run's log)" % run)
+    return dt
+
+
 LOOP_LINE = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 SECTION_LINE = re.compile(r"^(Pair|Bond|Neigh|Comm|Output|Modify|Other)\s*\|([^|]*)\|([^|]*)\|([^|]*)\|", re.M)
 # LIGGGHTS (the LAMMPS of 2013) prints "Pair  time (%) = T (P)", the average over the ranks
