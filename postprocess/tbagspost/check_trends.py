@@ -1,7 +1,7 @@
 """Check the paper's findings (Panganiban et al. 2025, Part 2) on the runs of `./tbags shear trends`.
 
-usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.check_trends TRENDS_DIR    (F5500/, F3730/, F1960/ inside, or
-                                                              realizations r1/, r2/, ... each with them)
+usage: PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.check_trends [--loads 5500,3730,1960] TRENDS_DIR
+           (F5500/, F3730/, F1960/ inside, or realizations r1/, r2/, ... each with them)
        PYTHONPATH=postprocess /usr/bin/python3 -m tbagspost.check_trends --speed RUN_A RUN_B [--tol 0.1]
 
 Each finding is asserted in every realization, with a threshold that says how strongly it must
@@ -17,6 +17,10 @@ hold (H: the sand height, (nz - 2) x 5 mm, from the run's log):
   5. contact forces are larger near the edges: in the central cross-section (|y - y_c| < 10 mm)
      the mean normal force of the contacts on sand (sand-sand and bag-sand) within 10 mm of the
      bag's sides is at least EDGE (1.2) times that within the central half.
+--loads judges the loads named (at least two of the three; default all three, each required):
+a load that is not run yet is left out by name, never by its folder's absence. Findings 1 and 3
+then compare the loads present; a step that spans a missing load must hold for both steps it
+stands for (RISE squared, 2 W_MIN of H); 4 and 5 read the highest load named.
 Speed (quasi-static check): the two runs' S-u curves, interpolated on the shared u range beyond
 0.5 mm, differ by at most TOL times the larger run's peak S (root mean square and maximum).
 Prints every measured number and a table of the realizations; exits 1 if a check fails.
@@ -100,14 +104,33 @@ def sand_height_mm(run):
     return (size[2] - 2) * 5.0
 
 
-def check_trends(root):
+def parse_loads(text):
+    """'5500,1960' -> (5500, 1960): two or three of LOADS, highest first."""
+    try:
+        loads = sorted({int(f) for f in text.split(",")}, reverse=True)
+    except ValueError:
+        loads = []
+    if len(loads) < 2 or any(f not in LOADS for f in loads):
+        raise SystemExit("check_trends: --loads takes two or three of %s, comma-separated, not '%s'"
+                         % (",".join(map(str, LOADS)), text))
+    return tuple(loads)
+
+
+def steps(lo, hi):
+    """how many of the paper's load steps lie between two loads (1 for neighbours)."""
+    return LOADS.index(lo) - LOADS.index(hi)
+
+
+def check_trends(root, loads=LOADS):
     root = Path(root)
-    runs = {f: root / ("F%d" % f) for f in LOADS}
+    runs = {f: root / ("F%d" % f) for f in loads}
     data = {f: read_csv(r) for f, r in runs.items()}
-    H = sand_height_mm(runs[5500])
+    top = loads[0]
+    H = sand_height_mm(runs[top])
     wmin = W_MIN * H
     results = []
     peak = {f: float(d["S_N"].max()) for f, d in data.items()}
+    pairs = list(zip(loads[:-1], loads[1:]))    # (higher, lower) load, neighbours among those named
     print("%s (sand height %.0f mm)" % (root, H))
     print("load (paper kN) | F_v here (N) | peak S (N) | u at peak (mm) | contraction (mm) | u at w_min (mm) | dilatancy (mm)")
     wp = {}
@@ -115,22 +138,28 @@ def check_trends(root):
         wp[f] = w_path(d)
         print("%15.2f | %12.1f | %10.1f | %14.2f | %16.4f | %15.2f | %14.4f"
               % (f / 1000, np.median(d["Fv_N"]), peak[f], d["u_mm"][np.argmax(d["S_N"])], wp[f][0], wp[f][2], wp[f][1]))
-    results.append(("1. peak S rises with F_v (x %.2f, %.2f; >= %g each)" % (peak[5500] / peak[3730], peak[3730] / peak[1960], RISE),
-                    peak[5500] >= RISE * peak[3730] and peak[3730] >= RISE * peak[1960]))
+    if loads != LOADS:
+        print("loads judged: %s kN (not run: %s kN)" % (", ".join("%.2f" % (f / 1000) for f in loads),
+                                                       ", ".join("%.2f" % (f / 1000) for f in LOADS if f not in loads)))
+    rise = [RISE ** steps(lo, hi) for hi, lo in pairs]
+    results.append(("1. peak S rises with F_v (x %s; >= %s each)"
+                    % (", ".join("%.2f" % (peak[hi] / peak[lo]) for hi, lo in pairs), ", ".join("%.3g" % r for r in rise)),
+                    all(peak[hi] >= r * peak[lo] for (hi, lo), r in zip(pairs, rise))))
     results.append(("2. w contracts, then dilates, at every load (each >= %.3f mm)" % wmin,
                     all(c >= wmin and dl >= wmin for c, dl, _ in wp.values())))
-    results.append(("3a. more contraction at higher F_v (steps > %.3f mm)" % wmin,
-                    wp[5500][0] - wp[3730][0] > wmin and wp[3730][0] - wp[1960][0] > wmin))
-    results.append(("3b. less dilatancy at higher F_v (steps > %.3f mm)" % wmin,
-                    wp[3730][1] - wp[5500][1] > wmin and wp[1960][1] - wp[3730][1] > wmin))
-    frac, gmax, ntop = detachment(runs[5500])
-    print("top face at the last dump (5.50 kN): %.0f %% of %d particles more than 0.5 mm below the plate, largest gap %.2f mm"
-          % (100 * frac, ntop, gmax))
+    step_w = ", ".join("%.3f" % (wmin * steps(lo, hi)) for hi, lo in pairs)
+    results.append(("3a. more contraction at higher F_v (steps > %s mm)" % step_w,
+                    all(wp[hi][0] - wp[lo][0] > wmin * steps(lo, hi) for hi, lo in pairs)))
+    results.append(("3b. less dilatancy at higher F_v (steps > %s mm)" % step_w,
+                    all(wp[lo][1] - wp[hi][1] > wmin * steps(lo, hi) for hi, lo in pairs)))
+    frac, gmax, ntop = detachment(runs[top])
+    print("top face at the last dump (%.2f kN): %.0f %% of %d particles more than 0.5 mm below the plate, largest gap %.2f mm"
+          % (top / 1000, 100 * frac, ntop, gmax))
     results.append(("4. the top surface detaches (%.0f %% of the top face; >= %.0f %%)" % (100 * frac, 100 * DETACH),
                     frac >= DETACH))
-    fe, fc, ne, nc = edge_forces(runs[5500])
-    print("central cross-section (5.50 kN, last dump): mean normal force %.3f N near the sides (%d contacts), "
-          "%.3f N in the central half (%d contacts), ratio %.2f" % (fe, ne, fc, nc, fe / fc))
+    fe, fc, ne, nc = edge_forces(runs[top])
+    print("central cross-section (%.2f kN, last dump): mean normal force %.3f N near the sides (%d contacts), "
+          "%.3f N in the central half (%d contacts), ratio %.2f" % (top / 1000, fe, ne, fc, nc, fe / fc))
     results.append(("5. contact forces larger near the edges (ratio %.2f; >= %g)" % (fe / fc, EDGE), fe >= EDGE * fc))
     return results
 
@@ -160,6 +189,8 @@ def main(argv=None):
     ap.add_argument("dirs", nargs="+")
     ap.add_argument("--speed", action="store_true", help="compare two runs at different shear speeds")
     ap.add_argument("--tol", type=float, default=0.1)
+    ap.add_argument("--loads", type=parse_loads, default=LOADS,
+                    help="the loads to judge (N, paper's scale), two or three of 5500,3730,1960")
     a = ap.parse_args(argv)
     if a.speed:
         if len(a.dirs) != 2:
@@ -171,7 +202,7 @@ def main(argv=None):
         reals = realizations(a.dirs[0])
         table = []
         for r in reals:
-            res = check_trends(r)
+            res = check_trends(r, a.loads)
             for name, ok in res:
                 print("%-4s %s" % ("PASS" if ok else "FAIL", name))
             table.append((r.name, res))

@@ -145,3 +145,26 @@ def test_sand_height_from_the_bag_summary(tmp_path):
     assert ct.sand_height_mm(run) == 35.0
     (tmp_path / "bag.json").unlink()
     assert ct.sand_height_mm(run) == 15.0
+
+
+def test_two_loads(tmp_path, capsys):
+    """--loads 5500,1960 (the paper bag before its 3.73 kN load): the two are compared as one step
+    spanning two, so the rise must be 1.1 squared and the contraction step 2 x 0.1 % of H; the
+    third load's folder is not read, and a load named but not run stops the check."""
+    import shutil
+    run = make_trends(tmp_path / "a")
+    shutil.rmtree(run / "F3730")
+    assert failed(ct.check_trends(run, (5500, 1960))) == []
+    assert "not run: 3.73 kN" in capsys.readouterr().out
+    # x 1.15 passes one step's 1.1 but not two steps' 1.21; 0.1 mm passes 0.075 but not 0.15 mm
+    weak = make_trends(tmp_path / "b", peaks=(460, 430, 400), contraction=(0.2, 0.15, 0.1))
+    assert sorted(n[:3] for n in failed(ct.check_trends(weak, (5500, 1960)))) == ["1. ", "3a."]
+    with pytest.raises(SystemExit, match="no .*F3730.*shear.csv"):
+        ct.check_trends(run)
+    assert ct.main(["--loads", "1960,5500", str(run)]) == 0
+
+
+@pytest.mark.parametrize("text", ["5500", "5500,4000", "a,b", "1960,1960"])
+def test_bad_loads(text):
+    with pytest.raises(SystemExit, match="--loads takes two or three"):
+        ct.parse_loads(text)
