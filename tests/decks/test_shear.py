@@ -104,6 +104,45 @@ def test_resumed_run_never_writes_over_its_checkpoint(filled, tmp_path):
     assert (tmp_path / "shear.restart.2").is_file()
 
 
+def test_box_widened_for_the_walls(filled, tmp_path):
+    """-var room (and, by default, ufinal + 0.3 of the bag's height on big bags: the paper bag lost
+    a wall particle past in.bag's 20 mm margin) widens the box in x and y, also when resumed from a
+    checkpoint, whose contact histories LAMMPS must reassign first (a 'run 0' after the fixes). A
+    checkpoint resumed with and without the widening continues the same: the first rows within
+    0.5 % of the S range (the other box's neighbour order is round-off; the sandpaper plates' and
+    the grains' tangential histories, if lost, drop S by tens of %). Resumed again from the widened
+    run's checkpoint, the box is not widened twice; a room <= 0 is refused."""
+    import shutil
+    shutil.copy(filled / "fill.data", tmp_path)
+    v = dict(SIZE, v=0.02, ufinal=0.0002, du_dump=0.0002, du_csv=2e-5)
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=v).check()    # shear.restart.1 at 0.2 mm
+    assert "BOX:" not in res.output    # a small bag keeps in.bag's box
+    start = len(np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True))
+    shutil.copy(tmp_path / "shear.restart.1", tmp_path / "at0.2.restart")
+    rows = {}
+    for name, extra in (("kept", {}), ("widened", {"room": 0.03})):
+        shutil.copy(tmp_path / "at0.2.restart", tmp_path / "shear.restart.1")
+        shutil.copy(tmp_path / "shear.csv", tmp_path / ("csv." + name))
+        res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(v, ufinal=0.0004, restart="shear.restart.1",
+                                                                      checkpoint_first=2, **extra)).check()
+        rows[name] = np.genfromtxt(tmp_path / "shear.csv", delimiter=",", names=True)[start:]
+        assert ("BOX: widened for the walls (room 30.0 mm): x -0.0300 0.0700, y -0.0300 0.0700 m" in res.output) \
+            == (name == "widened")
+        shutil.copy(tmp_path / ("csv." + name), tmp_path / "shear.csv")
+    kept, wide = rows["kept"], rows["widened"]
+    span = kept["S_N"].max() - kept["S_N"].min()
+    print("resumed at u = 0.2 mm with and without the widened box: |dS| %s N (S range %.1f N)"
+          % (np.round(np.abs(wide["S_N"] - kept["S_N"]), 4), span))
+    assert len(wide) == len(kept) == 10
+    assert np.abs(wide["S_N"][:2] - kept["S_N"][:2]).max() < 0.005 * span
+    # the widened run's checkpoint (shear.restart.2, at 0.4 mm) holds the wide box: not widened again
+    res = lmprun.run(INPUTS / "in.shear", tmp_path, variables=dict(v, ufinal=0.0006, restart="shear.restart.2",
+                                                                  checkpoint_first=1, room=0.03)).check()
+    assert "BOX:" not in res.output and "SHEARED: u 0.600 mm" in res.output
+    res = lmprun.run(INPUTS / "in.shear", tmp_path / "bad", variables=dict(SIZE, room=-2))
+    assert res.returncode != 0 and "room must be > 0 m" in res.output
+
+
 def test_loads_share_the_start_of_their_compression(filled, tmp_path):
     """-var compress_to 0.9 at the smallest load compresses to 0.9 F_v and checkpoints; a run at a
     larger load continues from it (-var compress_from) as if it had compressed from the start:
