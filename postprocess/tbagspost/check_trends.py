@@ -130,7 +130,8 @@ def check_trends(root, loads=LOADS):
     wmin = W_MIN * H
     results = []
     peak = {f: float(d["S_N"].max()) for f, d in data.items()}
-    pairs = list(zip(loads[:-1], loads[1:]))    # (higher, lower) load, neighbours among those named
+    # (higher load, lower load, paper's load steps between them), neighbours among those named
+    pairs = [(hi, lo, steps(lo, hi)) for hi, lo in zip(loads[:-1], loads[1:])]
     print("%s (sand height %.0f mm)" % (root, H))
     print("load (paper kN) | F_v here (N) | peak S (N) | u at peak (mm) | contraction (mm) | u at w_min (mm) | dilatancy (mm)")
     wp = {}
@@ -141,17 +142,17 @@ def check_trends(root, loads=LOADS):
     if loads != LOADS:
         print("loads judged: %s kN (not run: %s kN)" % (", ".join("%.2f" % (f / 1000) for f in loads),
                                                        ", ".join("%.2f" % (f / 1000) for f in LOADS if f not in loads)))
-    rise = [RISE ** steps(lo, hi) for hi, lo in pairs]
     results.append(("1. peak S rises with F_v (x %s; >= %s each)"
-                    % (", ".join("%.2f" % (peak[hi] / peak[lo]) for hi, lo in pairs), ", ".join("%.3g" % r for r in rise)),
-                    all(peak[hi] >= r * peak[lo] for (hi, lo), r in zip(pairs, rise))))
+                    % (", ".join("%.2f" % (peak[hi] / peak[lo]) for hi, lo, _ in pairs),
+                       ", ".join("%.3g" % RISE ** n for _, _, n in pairs)),
+                    all(peak[hi] >= RISE ** n * peak[lo] for hi, lo, n in pairs)))
     results.append(("2. w contracts, then dilates, at every load (each >= %.3f mm)" % wmin,
                     all(c >= wmin and dl >= wmin for c, dl, _ in wp.values())))
-    step_w = ", ".join("%.3f" % (wmin * steps(lo, hi)) for hi, lo in pairs)
+    step_w = ", ".join("%.3f" % (wmin * n) for _, _, n in pairs)
     results.append(("3a. more contraction at higher F_v (steps > %s mm)" % step_w,
-                    all(wp[hi][0] - wp[lo][0] > wmin * steps(lo, hi) for hi, lo in pairs)))
+                    all(wp[hi][0] - wp[lo][0] > wmin * n for hi, lo, n in pairs)))
     results.append(("3b. less dilatancy at higher F_v (steps > %s mm)" % step_w,
-                    all(wp[lo][1] - wp[hi][1] > wmin * steps(lo, hi) for hi, lo in pairs)))
+                    all(wp[lo][1] - wp[hi][1] > wmin * n for hi, lo, n in pairs)))
     frac, gmax, ntop = detachment(runs[top])
     print("top face at the last dump (%.2f kN): %.0f %% of %d particles more than 0.5 mm below the plate, largest gap %.2f mm"
           % (top / 1000, 100 * frac, ntop, gmax))
